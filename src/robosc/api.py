@@ -1,0 +1,113 @@
+"""The documented Python API of robosc. The CLI is a thin layer over these functions.
+
+>>> from robosc.api import check_file
+>>> result = check_file("examples/maze_solver.rscd")
+>>> result.ok, result.model.name
+(True, 'MazeSolver')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from robosc.language.checks import run_checks
+from robosc.language.diagnostics import Diagnostic, render_text, sort_key
+from robosc.language.formatter import format_syntax
+from robosc.language.loader import InputError, LibraryFinder, read_source
+from robosc.language.model import Model
+from robosc.language.parser import parse_source
+from robosc.language.resolver import resolve
+from robosc.language.source import SourceFile
+
+__all__ = [
+    "CheckResult",
+    "InputError",
+    "ModelError",
+    "check_file",
+    "check_text",
+    "format_text",
+    "load_model",
+]
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """The outcome of reading and checking one model file.
+
+    ``model`` is the checked model when there are no errors (warnings allowed),
+    otherwise None. ``sources`` holds the text of every file read (the model and
+    its libraries), for rendering diagnostics.
+    """
+
+    model: Model | None
+    diagnostics: tuple[Diagnostic, ...]
+    sources: dict[str, SourceFile] = field(default_factory=dict, repr=False)
+
+    @property
+    def ok(self) -> bool:
+        return not any(d.is_error for d in self.diagnostics)
+
+    @property
+    def errors(self) -> tuple[Diagnostic, ...]:
+        return tuple(d for d in self.diagnostics if d.is_error)
+
+    def render(self) -> str:
+        """All diagnostics as text: ``path:line:col: error: message``, source line, caret."""
+        return "\n".join(render_text(d, self.sources) for d in self.diagnostics)
+
+
+class ModelError(Exception):
+    """Raised by :func:`load_model` when a model has errors."""
+
+    def __init__(self, result: CheckResult) -> None:
+        super().__init__(result.render())
+        self.result = result
+
+
+def _search_paths(path: str, search_paths: Sequence[str | Path]) -> list[Path]:
+    return [Path(path).parent if path != "<text>" else Path("."), *(Path(p) for p in search_paths)]
+
+
+def _check(source: SourceFile, search_paths: Sequence[str | Path]) -> CheckResult:
+    sources = {source.path: source}
+    parsed = parse_source(source)
+    if parsed.syntax is None:
+        return CheckResult(None, parsed.diagnostics, sources)
+    finder = LibraryFinder(_search_paths(source.path, search_paths), sources)
+    resolved = resolve(parsed.syntax, source.path, finder)
+    diagnostics = list(resolved.diagnostics)
+    diagnostics += [d for d in run_checks(resolved.model) if d not in diagnostics]
+    diagnostics.sort(key=sort_key)
+    ok = not any(d.is_error for d in diagnostics)
+    return CheckResult(resolved.model if ok else None, tuple(diagnostics), sources)
+
+
+def check_text(text: str, path: str = "<text>", search_paths: Sequence[str | Path] = ()) -> CheckResult:
+    """Parse, resolve and check model text. Libraries are looked up next to ``path``
+    and on ``search_paths``. Never raises for bad input: problems are diagnostics."""
+    return _check(SourceFile(path, text), search_paths)
+
+
+def check_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> CheckResult:
+    """Read and check a model file. Raises :class:`InputError` if it cannot be read."""
+    return _check(read_source(path), search_paths)
+
+
+def load_model(path: str | Path, search_paths: Sequence[str | Path] = ()) -> Model:
+    """The checked model of a file, or :class:`ModelError` carrying the diagnostics."""
+    result = check_file(path, search_paths)
+    if result.model is None:
+        raise ModelError(result)
+    return result.model
+
+
+def format_text(text: str, path: str = "<text>") -> str | CheckResult:
+    """The model in robosc's canonical layout, comments kept; a :class:`CheckResult`
+    with the syntax error when the text does not parse."""
+    source = SourceFile(path, text)
+    parsed = parse_source(source)
+    if parsed.syntax is None:
+        return CheckResult(None, parsed.diagnostics, {path: source})
+    return format_syntax(parsed.syntax)

@@ -1,0 +1,1 @@
+"""The ``robosc`` command line: a thin layer over :mod:`robosc.api`."""

@@ -1,0 +1,45 @@
+"""``robosc check FILE... [-I DIR] [--format text|json]``."""
+
+from __future__ import annotations
+
+import click
+
+from robosc.api import InputError, check_file
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, CommandExit, include_option, input_problem
+from robosc.language.diagnostics import Diagnostic, to_json
+
+
+@click.command()
+@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True))
+@include_option
+@click.option(
+    "--format", "output", type=click.Choice(["text", "json"]), default="text", help="How to print diagnostics."
+)
+def check(files: tuple[str, ...], include: tuple[str, ...], output: str) -> None:
+    """Check RoboSC model files: syntax, references, types and the static rules.
+
+    Exits 0 when every file is valid (warnings allowed), 1 when a model has
+    errors, 2 when a file cannot be read.
+    """
+    diagnostics: list[Diagnostic] = []
+    failed = False
+    for path in files:
+        try:
+            result = check_file(path, include)
+        except InputError as exc:
+            raise input_problem(str(exc)) from None
+        diagnostics += result.diagnostics
+        failed = failed or not result.ok
+        if output == "text":
+            if result.diagnostics:
+                click.echo(result.render(), err=not result.ok)
+            if result.ok:
+                warnings = len(result.diagnostics)
+                suffix = f" ({warnings} warning{'s' if warnings != 1 else ''})" if warnings else ""
+                click.echo(f"{path}: ok{suffix}")
+            else:
+                errors = len(result.errors)
+                click.echo(f"{path}: {errors} error{'s' if errors != 1 else ''}", err=True)
+    if output == "json":
+        click.echo(to_json(diagnostics))
+    raise CommandExit(EXIT_MODEL_ERRORS if failed else EXIT_OK)

@@ -1,0 +1,52 @@
+"""``robosc``: the command-line entry point.
+
+Exit codes: 0 success, 1 the model has errors (or ``fmt --check`` found
+unformatted files), 2 usage or input problems (missing file, a directory, not
+UTF-8), 3 an internal error in robosc itself.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
+
+import click
+
+from robosc.cli.check import check
+from robosc.cli.fmt import fmt
+
+EXIT_INTERNAL = 3
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="robosc", prog_name="robosc")
+def cli() -> None:
+    """RoboSC models in, proven supervisory controllers for ROS out."""
+
+
+cli.add_command(check)
+cli.add_command(fmt)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    try:
+        cli.main(args=list(argv) if argv is not None else None, prog_name="robosc", standalone_mode=False)
+    except click.exceptions.Exit as exc:
+        return int(exc.exit_code)
+    except click.ClickException as exc:
+        exc.show()
+        return exc.exit_code
+    except click.Abort:
+        click.echo("robosc: aborted", err=True)
+        return 130
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # noqa: BLE001 -- the one place that turns a bug into a message
+        click.echo(f"robosc: internal error: {type(exc).__name__}: {exc}", err=True)
+        click.echo("please report this with the model that caused it", err=True)
+        return EXIT_INTERNAL
+    return 0
+
+
+def run() -> None:
+    sys.exit(main())

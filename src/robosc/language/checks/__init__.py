@@ -1,0 +1,54 @@
+"""The static rules of LANGUAGE.md section 5, one module per rule.
+
+Each module has ``check(model) -> Iterator[Diagnostic]``. Rule 14 (every
+reference resolves) and the expression type rules are enforced while
+resolving, in :mod:`robosc.language.resolver`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+
+from robosc.language.checks import (
+    enum_default,
+    enum_source,
+    initial_state,
+    integer_range,
+    interface_links,
+    marked_reachable,
+    no_data_to_request,
+    one_behaviour,
+    own_variables,
+    provide_direction,
+    result_types,
+    shared_topics,
+    synthesis_types,
+    topic_names,
+    unique_names,
+)
+from robosc.language.diagnostics import Diagnostic
+from robosc.language.model import Model
+
+Check = Callable[[Model], Iterator[Diagnostic]]
+
+CHECKS: tuple[Check, ...] = (
+    unique_names.check,  # rule 1
+    initial_state.check,  # rule 2
+    marked_reachable.check,  # rule 3
+    one_behaviour.check,  # rule 4
+    result_types.check,  # rule 5
+    no_data_to_request.check,  # rule 6
+    own_variables.check,  # rule 7
+    provide_direction.check,  # rule 8
+    integer_range.check,  # rule 9
+    synthesis_types.check,  # rule 10
+    enum_source.check,  # rule 11
+    interface_links.check,  # rule 12
+    shared_topics.check,  # rule 13 (warning)
+    topic_names.check,  # rule 15
+    enum_default.check,  # section 4: exactly one default rule per enum
+)
+
+
+def run_checks(model: Model) -> list[Diagnostic]:
+    return [diagnostic for check in CHECKS for diagnostic in check(model)]

@@ -1,0 +1,91 @@
+"""Diagnostics: what the language stage reports about a model, and how it is shown."""
+
+from __future__ import annotations
+
+import difflib
+import json
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from enum import Enum
+
+from robosc.language.source import SourceFile, Span
+
+
+class Severity(str, Enum):
+    ERROR = "error"
+    WARNING = "warning"
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """One finding: where, how bad, what, and (optionally) a hint how to fix it.
+
+    ``code`` names the rule: ``syntax``, ``io``, ``types``, or ``rule-N`` for
+    the static rule N of LANGUAGE.md section 5.
+    """
+
+    severity: Severity
+    message: str
+    span: Span
+    code: str
+    hint: str | None = None
+
+    @property
+    def is_error(self) -> bool:
+        return self.severity is Severity.ERROR
+
+
+def error(span: Span, message: str, code: str, hint: str | None = None) -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, span, code, hint)
+
+
+def warning(span: Span, message: str, code: str, hint: str | None = None) -> Diagnostic:
+    return Diagnostic(Severity.WARNING, message, span, code, hint)
+
+
+def did_you_mean(name: str, candidates: Iterable[str]) -> str | None:
+    """A "did you mean ...?" hint for an unknown ``name``, or None when nothing is close."""
+    close = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
+    return f"did you mean '{close[0]}'?" if close else None
+
+
+def sort_key(diagnostic: Diagnostic) -> tuple[str, int, int]:
+    return (diagnostic.span.path, diagnostic.span.line, diagnostic.span.column)
+
+
+def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> str:
+    """``path:line:col: error: message``, then the source line and a caret under the span."""
+    span = diagnostic.span
+    lines = [f"{span}: {diagnostic.severity.value}: {diagnostic.message}"]
+    source = sources.get(span.path)
+    if source is not None and span.line > 0:
+        text = source.line_text(span.line).expandtabs(1)
+        if text.strip():
+            width = (span.end_column - span.column) if span.end_line == span.line else 1
+            width = max(1, min(width, len(text) - span.column + 1))
+            lines.append(f"    {text}")
+            lines.append("    " + " " * (span.column - 1) + "^" + "~" * (width - 1))
+    if diagnostic.hint:
+        lines.append(f"    hint: {diagnostic.hint}")
+    return "\n".join(lines)
+
+
+def to_json(diagnostics: Iterable[Diagnostic]) -> str:
+    """The diagnostics as a JSON array (for editors and CI)."""
+    return json.dumps(
+        [
+            {
+                "path": d.span.path,
+                "line": d.span.line,
+                "column": d.span.column,
+                "end_line": d.span.end_line,
+                "end_column": d.span.end_column,
+                "severity": d.severity.value,
+                "code": d.code,
+                "message": d.message,
+                "hint": d.hint,
+            }
+            for d in diagnostics
+        ],
+        indent=2,
+    )

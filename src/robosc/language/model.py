@@ -1,0 +1,510 @@
+"""The checked model: what the language stage hands to every later stage.
+
+Every reference is resolved to the object it names (a transition holds the
+:class:`State` it goes to, an expression holds the :class:`Variable` it reads),
+and every expression carries its type. Entities (components, states, variables,
+communications, data types) compare by identity; nothing here points back to
+the parse tree. Entities that need to know their component carry its name in
+``owner`` (a label for display, not a reference).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Union
+
+from robosc.language.source import Span
+
+# ---- data types ----------------------------------------------------------
+
+
+class BasicKind(str, Enum):
+    STRING = "string"
+    BOOLEAN = "boolean"
+    INTEGER = "integer"
+    DOUBLE = "double"
+    NONE = "none"
+
+
+@dataclass(frozen=True)
+class BasicType:
+    kind: BasicKind
+    low: int | None = None  # inclusive range, integers only
+    high: int | None = None
+
+    @property
+    def is_ranged_integer(self) -> bool:
+        return self.kind is BasicKind.INTEGER and self.low is not None
+
+    def __str__(self) -> str:
+        if self.is_ranged_integer:
+            return f"integer({self.low}..{self.high})"
+        return self.kind.value
+
+
+@dataclass(frozen=True)
+class ArrayType:
+    element: DataType
+
+    def __str__(self) -> str:
+        return f"array({self.element})"
+
+
+@dataclass(frozen=True, eq=False)
+class Property:
+    name: str
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class ObjectType:
+    name: str
+    properties: tuple[Property, ...]
+    span: Span = field(repr=False)
+
+    def property(self, name: str) -> Property | None:
+        return next((p for p in self.properties if p.name == name), None)
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(frozen=True, eq=False)
+class EnumValue:
+    name: str
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class EnumRule:
+    condition: Expr | None  # None: the default rule
+    value: EnumValue
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class EnumType:
+    """``enum E from T to { rules }``. ``values`` in order of first mention; the first is the default start value."""
+
+    name: str
+    source: DataType
+    values: tuple[EnumValue, ...]
+    rules: tuple[EnumRule, ...]
+    span: Span = field(repr=False)
+
+    @property
+    def default(self) -> EnumValue | None:
+        return next((r.value for r in self.rules if r.condition is None), None)
+
+    def value(self, name: str) -> EnumValue | None:
+        return next((v for v in self.values if v.name == name), None)
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(frozen=True)
+class ErrorType:
+    """The type of something that did not resolve; suppresses follow-up errors."""
+
+    def __str__(self) -> str:
+        return "<error>"
+
+
+DataType = Union[BasicType, ArrayType, ObjectType, EnumType, ErrorType]
+
+BOOLEAN = BasicType(BasicKind.BOOLEAN)
+INTEGER = BasicType(BasicKind.INTEGER)
+DOUBLE = BasicType(BasicKind.DOUBLE)
+STRING = BasicType(BasicKind.STRING)
+NONE = BasicType(BasicKind.NONE)
+ERROR = ErrorType()
+
+
+@dataclass(frozen=True, eq=False)
+class Interface:
+    """``interface name use RosType from ros_package``."""
+
+    name: str
+    ros_type: str
+    package: str
+    span: Span = field(repr=False)
+
+
+# ---- expressions -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FieldStep:
+    property: Property
+
+
+@dataclass(frozen=True)
+class IndexStep:
+    index: int
+
+
+Step = Union[FieldStep, IndexStep]
+
+
+@dataclass(frozen=True, eq=False)
+class Literal:
+    value: bool | int | float | str
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class EnumLiteral:
+    enum: EnumType
+    value: EnumValue
+    span: Span = field(repr=False)
+
+    @property
+    def type(self) -> DataType:
+        return self.enum
+
+
+@dataclass(frozen=True, eq=False)
+class StateRef:
+    """``Component.state``: true while the component's automaton is in ``state``."""
+
+    state: State
+    span: Span = field(repr=False)
+    type: DataType = BOOLEAN
+
+
+@dataclass(frozen=True, eq=False)
+class VariableRef:
+    """A variable, optionally followed by property / index steps into its data."""
+
+    variable: Variable
+    steps: tuple[Step, ...]
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class DataRef:
+    """``value...``: the data the middleware delivered (or the enum's raw input)."""
+
+    steps: tuple[Step, ...]
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Unary:
+    op: str  # "!" or "-"
+    operand: Expr
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Binary:
+    op: str  # or and = != > >= < <= => + - * /
+    left: Expr
+    right: Expr
+    type: DataType
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Invalid:
+    """An expression that did not resolve (already reported)."""
+
+    span: Span = field(repr=False)
+    type: DataType = ERROR
+
+
+Expr = Union[Literal, EnumLiteral, StateRef, VariableRef, DataRef, Unary, Binary, Invalid]
+
+
+def walk(expr: Expr) -> Iterator[Expr]:
+    """``expr`` and every expression inside it."""
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        yield node
+        if isinstance(node, Binary):
+            stack += [node.right, node.left]
+        elif isinstance(node, Unary):
+            stack.append(node.operand)
+
+
+# ---- communication ----------------------------------------------------------
+
+
+class Direction(str, Enum):
+    INCOMING = "incoming"  # the controller publishes to the node
+    OUTGOING = "outgoing"  # the node publishes, the controller receives
+
+
+@dataclass(frozen=True, eq=False)
+class Message:
+    name: str
+    owner: str
+    direction: Direction
+    identifier: str | None
+    type: DataType
+    interface: Interface | None
+    span: Span = field(repr=False)
+
+    @property
+    def ros_name(self) -> str:
+        return self.identifier if self.identifier is not None else self.name
+
+    @property
+    def request_type(self) -> DataType:
+        return self.type
+
+    @property
+    def response_type(self) -> DataType:
+        return self.type
+
+
+@dataclass(frozen=True, eq=False)
+class Service:
+    name: str
+    owner: str
+    identifier: str | None
+    request_type: DataType
+    response_type: DataType
+    interface: Interface | None
+    span: Span = field(repr=False)
+
+    @property
+    def ros_name(self) -> str:
+        return self.identifier if self.identifier is not None else self.name
+
+
+@dataclass(frozen=True, eq=False)
+class Action:
+    name: str
+    owner: str
+    identifier: str | None
+    request_type: DataType
+    response_type: DataType
+    feedback_type: DataType
+    interface: Interface | None
+    span: Span = field(repr=False)
+
+    @property
+    def ros_name(self) -> str:
+        return self.identifier if self.identifier is not None else self.name
+
+
+Communication = Union[Message, Service, Action]
+
+
+def data_types_of(communication: Communication) -> tuple[DataType, ...]:
+    if isinstance(communication, Message):
+        return (communication.type,)
+    if isinstance(communication, Service):
+        return (communication.request_type, communication.response_type)
+    return (communication.request_type, communication.response_type, communication.feedback_type)
+
+
+# ---- behaviour --------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    name: str
+    owner: str
+    initial: bool
+    marked: bool
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Variable:
+    name: str
+    owner: str
+    type: DataType
+    initial: Expr | None
+    span: Span = field(repr=False)
+
+
+class ResultKind(str, Enum):
+    REQUEST = "request"
+    RESPONSE = "response"
+    FEEDBACK = "feedback"
+    ERROR = "error"
+    CANCEL = "cancel"
+
+
+@dataclass(frozen=True, eq=False)
+class Assignment:
+    variable: Variable
+    steps: tuple[Step, ...]
+    value: Expr
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class ResultTransition:
+    """``on RESULT from/to COMM do ... goto S``; ``source`` None means every state."""
+
+    source: State | None
+    result: ResultKind
+    communication: Communication
+    assignments: tuple[Assignment, ...]
+    target: State | None  # None: stays where it is
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class TauTransition:
+    """``transition if G goto S``: a controllable event of its own."""
+
+    source: State | None
+    guard: Expr | None
+    target: State | None
+    span: Span = field(repr=False)
+
+
+Transition = Union[ResultTransition, TauTransition]
+
+
+@dataclass(frozen=True, eq=False)
+class Automaton:
+    states: tuple[State, ...]
+    variables: tuple[Variable, ...]
+    transitions: tuple[Transition, ...]
+    span: Span = field(repr=False)
+
+    @property
+    def initial_states(self) -> tuple[State, ...]:
+        return tuple(s for s in self.states if s.initial)
+
+    def state(self, name: str) -> State | None:
+        return next((s for s in self.states if s.name == name), None)
+
+    def variable(self, name: str) -> Variable | None:
+        return next((v for v in self.variables if v.name == name), None)
+
+    def transitions_from(self, state: State) -> Iterator[Transition]:
+        """What ``state`` can do: its own transitions and the automaton-wide ones."""
+        return (t for t in self.transitions if t.source is None or t.source is state)
+
+
+@dataclass(frozen=True, eq=False)
+class Component:
+    """A component (a ROS node). ``library`` is set for an imported one."""
+
+    name: str
+    communications: tuple[Communication, ...]
+    behaviours: tuple[Automaton, ...]  # the language allows at most one (rule 4)
+    span: Span = field(repr=False)
+    library: str | None = None
+    library_component: str | None = None
+
+    @property
+    def automaton(self) -> Automaton | None:
+        return self.behaviours[0] if self.behaviours else None
+
+
+# ---- robot-level statements -------------------------------------------------
+
+
+class RequirementKind(str, Enum):
+    NEEDS = "needs"
+    DISABLES = "disables"
+
+
+@dataclass(frozen=True, eq=False)
+class Requirement:
+    """``E needs C`` or ``C disables E``, for each communication in ``communications``."""
+
+    kind: RequirementKind
+    communications: tuple[Communication, ...]
+    condition: Expr
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class FieldValue:
+    property: Property
+    value: Expr | ObjectValue
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class ObjectValue:
+    type: DataType
+    fields: tuple[FieldValue, ...]
+    span: Span = field(repr=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Provide:
+    communication: Communication
+    data: Expr | ObjectValue
+    condition: Expr | None
+    span: Span = field(repr=False)
+
+
+# ---- the whole model --------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """A checked robot (or library): components with everything they use resolved."""
+
+    kind: str  # "robot" or "library"
+    name: str
+    path: str
+    components: tuple[Component, ...]
+    data_types: tuple[ObjectType | EnumType, ...]
+    interfaces: tuple[Interface, ...]
+    requirements: tuple[Requirement, ...] = ()
+    provides: tuple[Provide, ...] = ()
+
+    @property
+    def communications(self) -> tuple[Communication, ...]:
+        return tuple(c for comp in self.components for c in comp.communications)
+
+    def component(self, name: str) -> Component | None:
+        return next((c for c in self.components if c.name == name), None)
+
+    def communication(self, name: str) -> Communication | None:
+        return next((c for c in self.communications if c.name == name), None)
+
+    @property
+    def enums(self) -> tuple[EnumType, ...]:
+        return tuple(t for t in self.data_types if isinstance(t, EnumType))
+
+
+def expressions_of(model: Model) -> Iterator[tuple[str, Expr]]:
+    """Every top-level expression with the role it plays: guard, requirement, provide-condition, ..."""
+    for component in model.components:
+        for automaton in component.behaviours:
+            for transition in automaton.transitions:
+                if isinstance(transition, TauTransition) and transition.guard is not None:
+                    yield "guard", transition.guard
+                elif isinstance(transition, ResultTransition):
+                    for assignment in transition.assignments:
+                        yield "assignment", assignment.value
+    for requirement in model.requirements:
+        yield "requirement", requirement.condition
+    for provide in model.provides:
+        if provide.condition is not None:
+            yield "provide-condition", provide.condition
+
+
+def synthesis_variables(model: Model) -> dict[Variable, Expr]:
+    """Variables that take part in synthesis (named in a guard, requirement or provide
+    condition), each with the first place that names it."""
+    found: dict[Variable, Expr] = {}
+    for role, expr in expressions_of(model):
+        if role == "assignment":
+            continue
+        for node in walk(expr):
+            if isinstance(node, VariableRef):
+                found.setdefault(node.variable, node)
+    return found

@@ -1,0 +1,176 @@
+"""Text to syntax nodes. Syntax errors become one diagnostic at the first place parsing fails."""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+from lark import Lark, Token, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.exceptions import VisitError
+
+from robosc.language import syntax as s
+from robosc.language.diagnostics import Diagnostic, error
+from robosc.language.source import SourceFile, Span
+from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
+
+GRAMMAR = Path(__file__).with_name("grammar.lark")
+
+# What the user typed, for the terminals Lark names by pattern.
+_TERMINAL_TEXT = {
+    "NAME": "a name",
+    "INT": "an integer",
+    "DOUBLE": "a number",
+    "STRING": "a string",
+    "$END": "the end of the file",
+}
+TOO_DEEP = "the model is nested too deeply to read"
+_OPERATORS = {"OR", "AND", "EQ", "NE", "GT", "GE", "LT", "LE", "IMPLIES", "PLUS", "MINUS", "TIMES", "DIVIDE"}
+_EXPRESSION_STARTS = {"NAME", "INT", "DOUBLE", "STRING", "VALUE", "TRUE", "FALSE", "LPAR", "BANG", "MINUS"}
+
+
+@dataclass(frozen=True)
+class ParseResult:
+    syntax: s.FileSyntax | None
+    diagnostics: tuple[Diagnostic, ...]
+
+
+class _CommentCollector:
+    """Lexer callback keeping the comments that the grammar ignores (for ``robosc fmt``)."""
+
+    def __init__(self) -> None:
+        self.tokens: list[Token] = []
+
+    def __call__(self, token: Token) -> Token:
+        self.tokens.append(token)
+        return token
+
+
+_lock = threading.Lock()
+_collector = _CommentCollector()
+
+
+@lru_cache(maxsize=1)
+def _lark() -> Lark:
+    return Lark(
+        GRAMMAR.read_text(encoding="utf-8"),
+        parser="lalr",
+        lexer="contextual",
+        propagate_positions=True,
+        maybe_placeholders=False,
+        cache=True,
+        lexer_callbacks={"LINE_COMMENT": _collector, "BLOCK_COMMENT": _collector},
+    )
+
+
+def _describe_terminal(name: str, parser: Lark) -> str:
+    if name in _TERMINAL_TEXT:
+        return _TERMINAL_TEXT[name]
+    try:
+        pattern = parser.get_terminal(name).pattern
+    except KeyError:
+        return name.lower()
+    return f"'{pattern.value}'" if pattern.type == "str" else name.lower()
+
+
+def _describe_expected(expected: set[str], parser: Lark) -> str:
+    names = set(expected)
+    parts: list[str] = []
+    if _EXPRESSION_STARTS <= names:
+        names -= _EXPRESSION_STARTS
+        parts.append("an expression")
+    if len(_OPERATORS & names) > 3:
+        names -= _OPERATORS
+        parts.append("an operator")
+    parts += sorted(_describe_terminal(n, parser) for n in names)
+    if len(parts) > 8:
+        parts = parts[:8] + ["..."]
+    return parts[0] if len(parts) == 1 else "one of " + ", ".join(parts)
+
+
+def _acceptable(exc: UnexpectedInput) -> set[str]:
+    """The tokens the parser could take at the failure, as exactly as Lark can tell."""
+    interactive = getattr(exc, "interactive_parser", None)
+    if interactive is not None:
+        try:
+            return set(interactive.accepts())
+        except Exception:  # noqa: BLE001 -- fall back to the parse table's answer
+            pass
+    return set(getattr(exc, "expected", None) or ())
+
+
+def _point(path: str, text: str, line: int, column: int, pos: int, length: int = 1) -> Span:
+    return Span(path, line, column, line, column + length, pos, pos + length)
+
+
+def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> Diagnostic:
+    if isinstance(exc, UnexpectedToken) and exc.token.type == "$END" or isinstance(exc, UnexpectedEOF):
+        lines = text.splitlines() or [""]
+        line, column = len(lines), len(lines[-1]) + 1
+        expected = _acceptable(exc)
+        message = "unexpected end of file"
+        if expected:
+            message += f", expected {_describe_expected(set(expected), parser)}"
+        return error(_point(path, text, line, column, len(text), 0), message, "syntax")
+    if isinstance(exc, UnexpectedToken):
+        token = exc.token
+        shown = str(token).replace("\n", " ")
+        if len(shown) > 30:
+            shown = shown[:27] + "..."
+        span = _point(path, text, exc.line, exc.column, token.start_pos or 0, max(1, len(str(token))))
+        if token.type in parser.lexer_conf.terminals_by_name and token.type != "NAME":
+            what = f"'{shown}'"
+            hint = (
+                f"'{shown}' is a keyword; write '^{shown}' to use it as a name"
+                if shown.isidentifier() and "NAME" in exc.expected
+                else None
+            )
+        else:
+            what, hint = f"'{shown}'", None
+        return error(
+            span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", "syntax", hint
+        )
+    assert isinstance(exc, UnexpectedCharacters)
+    char = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+    span = _point(path, text, exc.line, exc.column, exc.pos_in_stream)
+    if char in "\"'":
+        return error(span, "unterminated string", "syntax")
+    if text.startswith("/*", exc.pos_in_stream):
+        return error(span, "unterminated comment (missing '*/')", "syntax")
+    shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
+    message = f"unexpected character {shown}"
+    if exc.allowed:
+        message += f", expected {_describe_expected(set(exc.allowed), parser)}"
+    return error(span, message, "syntax")
+
+
+def parse_text(text: str, path: str = "<text>") -> ParseResult:
+    """Parse one ``.rscd`` file's text into syntax nodes, or one diagnostic."""
+    parser = _lark()
+    with _lock:
+        _collector.tokens = []
+        try:
+            tree = parser.parse(text)
+        except UnexpectedInput as exc:
+            return ParseResult(None, (_syntax_error(exc, path, text, parser),))
+        comment_tokens = _collector.tokens
+    builder = SyntaxBuilder(path, ())
+    comments = tuple(s.Comment(str(t), builder.token_span(t)) for t in comment_tokens)
+    builder.comments = comments
+    try:
+        result = builder.transform(tree)
+    except VisitError as exc:
+        problem = exc.orig_exc
+        if isinstance(problem, SyntaxProblem):
+            return ParseResult(None, (error(problem.span, problem.message, "syntax", problem.hint),))
+        if isinstance(problem, RecursionError):
+            return ParseResult(None, (error(Span(path, 1, 1, 1, 2, 0, 1), TOO_DEEP, "syntax"),))
+        raise
+    except RecursionError:
+        return ParseResult(None, (error(Span(path, 1, 1, 1, 2, 0, 1), TOO_DEEP, "syntax"),))
+    return ParseResult(result, ())
+
+
+def parse_source(source: SourceFile) -> ParseResult:
+    return parse_text(source.text, source.path)

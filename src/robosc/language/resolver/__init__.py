@@ -1,0 +1,239 @@
+"""Resolution: syntax nodes of a robot (and the libraries it imports) to the checked model.
+
+Order: every file's data types and interfaces; every component's names
+(communications, states, variables); then transitions, requirements and
+provide statements, which may name anything declared before.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from robosc.language import model as m
+from robosc.language import syntax as s
+from robosc.language.diagnostics import Diagnostic
+from robosc.language.resolver.components import BehaviourResolver, declare
+from robosc.language.resolver.expressions import ExpressionResolver
+from robosc.language.resolver.reporter import Reporter
+from robosc.language.resolver.scope import FileScope
+from robosc.language.resolver.statements import StatementResolver
+from robosc.language.resolver.tables import ComponentTables
+
+__all__ = ["FileScope", "LibraryProvider", "LibraryUnit", "Reporter", "ResolveResult", "resolve", "scope_of"]
+
+_NOT_AVAILABLE = ""  # lookup answer for a component whose import failed (already reported)
+
+
+@dataclass
+class LibraryUnit:
+    """A parsed library with its data types and interfaces resolved."""
+
+    syntax: s.FileSyntax
+    scope: FileScope
+
+    def component(self, name: str) -> s.ComponentSyntax | None:
+        return next(
+            (
+                d
+                for d in self.syntax.definitions
+                if isinstance(d, (s.LocalComponentSyntax, s.ImportedComponentSyntax)) and d.name.text == name
+            ),
+            None,
+        )
+
+    @property
+    def component_names(self) -> list[str]:
+        return [
+            d.name.text
+            for d in self.syntax.definitions
+            if isinstance(d, (s.LocalComponentSyntax, s.ImportedComponentSyntax))
+        ]
+
+
+class LibraryProvider(Protocol):
+    def find(self, name: s.Name, reporter: Reporter) -> LibraryUnit | None:
+        """The library called ``name``, or None after reporting why it cannot be had."""
+
+
+@dataclass(frozen=True)
+class ResolveResult:
+    model: m.Model
+    diagnostics: tuple[Diagnostic, ...]
+
+
+def scope_of(file: s.FileSyntax, reporter: Reporter) -> FileScope:
+    """A file's scope with its data types, interfaces and enum rules resolved."""
+    scope = FileScope(file, reporter)
+    scope.build_all(ExpressionResolver(reporter, scope.enum_values, lambda _: None, list))
+    return scope
+
+
+@dataclass
+class _Entry:
+    syntax: s.LocalComponentSyntax | None  # None when the import failed
+    tables: ComponentTables
+    scope: FileScope
+    span: s.Span
+    library: LibraryUnit | None = None
+    library_name: str | None = None
+    library_component: str | None = None
+
+
+class _Resolver:
+    def __init__(self, file: s.FileSyntax, libraries: LibraryProvider) -> None:
+        self.file = file
+        self.libraries = libraries
+        self.reporter = Reporter()
+        self.scope = scope_of(file, self.reporter)
+        self.entries: dict[str, _Entry] = {}
+        self.order: list[_Entry] = []
+
+    # -- phase 1 -------------------------------------------------------------------
+    def declare_components(self) -> None:
+        for definition in self.file.definitions:
+            if isinstance(definition, s.LocalComponentSyntax):
+                tables = declare(definition, definition.name.text, self.scope)
+                self._add(definition.name.text, _Entry(definition, tables, self.scope, definition.span))
+            elif isinstance(definition, s.ImportedComponentSyntax):
+                self._add(definition.name.text, self._import(definition))
+
+    def _add(self, name: str, entry: _Entry) -> None:
+        self.order.append(entry)
+        self.entries.setdefault(name, entry)
+
+    def _import(self, syntax: s.ImportedComponentSyntax) -> _Entry:
+        local = syntax.name.text
+        failed = _Entry(None, ComponentTables(local), self.scope, syntax.span)
+        unit = self.libraries.find(syntax.library, self.reporter)
+        if unit is None:
+            return failed
+        found = unit.component(syntax.component.text)
+        if found is None:
+            self.reporter.unknown(
+                syntax.component.span,
+                f"component of library '{syntax.library.text}'",
+                syntax.component.text,
+                unit.component_names,
+            )
+            return failed
+        if not isinstance(found, s.LocalComponentSyntax):
+            self.reporter.error(
+                syntax.component.span,
+                f"'{syntax.component.text}' is itself imported in library '{syntax.library.text}'; "
+                "import it from the library that defines it",
+                "rule-14",
+            )
+            return failed
+        tables = declare(found, local, unit.scope)
+        for communication in tables.communications:
+            for data_type in m.data_types_of(communication):
+                self.scope.add_imported(data_type)
+            if communication.interface is not None and communication.interface not in self.scope.interfaces:
+                self.scope.interfaces.append(communication.interface)
+        for variable in tables.variables.values():
+            self.scope.add_imported(variable.type)
+        return _Entry(
+            found, tables, unit.scope, syntax.span, unit, syntax.library.text, syntax.component.text
+        )
+
+    # -- lookups -------------------------------------------------------------------
+    def _robot_component(self, name: str) -> ComponentTables | str | None:
+        entry = self.entries.get(name)
+        if entry is None:
+            return None
+        return entry.tables if entry.syntax is not None else _NOT_AVAILABLE
+
+    def _library_component(self, entry: _Entry, name: str) -> ComponentTables | str | None:
+        """A component named inside a library component: the robot component that imports it."""
+        assert entry.library is not None
+        if entry.library.component(name) is None:
+            return None
+        for other in self.order:
+            if other.library is entry.library and other.library_component == name:
+                return other.tables
+        return f"component '{name}' of library '{entry.library_name}' is not imported into this robot"
+
+    def _communication(self, name: str) -> m.Communication | None:
+        for entry in self.order:
+            for communication in entry.tables.communications:
+                if communication.name == name:
+                    return communication
+        return None
+
+    def _communication_names(self) -> list[str]:
+        return [c.name for e in self.order for c in e.tables.communications]
+
+    def _component_names(self) -> list[str]:
+        return list(self.entries)
+
+    # -- phase 2 -------------------------------------------------------------------
+    def components(self) -> tuple[m.Component, ...]:
+        robot_expressions = ExpressionResolver(
+            self.reporter, self.scope.enum_values, self._robot_component, self._component_names
+        )
+        built = []
+        for entry in self.order:
+            expressions = robot_expressions
+            if entry.library is not None:
+                expressions = ExpressionResolver(
+                    self.reporter,
+                    entry.scope.enum_values,
+                    lambda name, e=entry: self._library_component(e, name),  # type: ignore[misc]
+                    lambda e=entry: e.library.component_names,  # type: ignore[misc]
+                )
+            behaviour = BehaviourResolver(
+                entry.tables, expressions, self.reporter, self._communication, self._communication_names
+            )
+            automata: tuple[m.Automaton, ...] = ()
+            if entry.syntax is not None:
+                automata = tuple(
+                    behaviour.automaton(item) for item in entry.syntax.items if isinstance(item, s.BehaviourSyntax)
+                )
+            built.append(
+                m.Component(
+                    entry.tables.name,
+                    tuple(entry.tables.communications),
+                    automata,
+                    entry.span,
+                    entry.library_name,
+                    entry.library_component,
+                )
+            )
+        return tuple(built)
+
+    def statements(self) -> tuple[tuple[m.Requirement, ...], tuple[m.Provide, ...]]:
+        expressions = ExpressionResolver(
+            self.reporter, self.scope.enum_values, self._robot_component, self._component_names
+        )
+        resolver = StatementResolver(expressions, self.reporter, self._communication, self._communication_names)
+        requirements = []
+        provides = []
+        for definition in self.file.definitions:
+            if isinstance(definition, s.RequirementSyntax):
+                requirements.append(resolver.requirement(definition))
+            elif isinstance(definition, s.ProvideSyntax):
+                provide = resolver.provide(definition)
+                if provide is not None:
+                    provides.append(provide)
+        return tuple(requirements), tuple(provides)
+
+
+def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> ResolveResult:
+    """Resolve a parsed robot or library; unresolvable parts are reported and left out."""
+    resolver = _Resolver(file, libraries)
+    resolver.declare_components()
+    components = resolver.components()
+    requirements, provides = resolver.statements()
+    model = m.Model(
+        file.kind,
+        file.name.text,
+        path,
+        components,
+        tuple(resolver.scope.data_types),
+        tuple(resolver.scope.interfaces),
+        requirements,
+        provides,
+    )
+    unique = tuple(dict.fromkeys(resolver.reporter.diagnostics))
+    return ResolveResult(model, unique)

@@ -1,0 +1,176 @@
+"""Resolves expressions: names to objects, and each node's type."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from robosc.language import model as m
+from robosc.language import syntax as s
+from robosc.language import types as t
+from robosc.language.resolver.reporter import Reporter
+from robosc.language.resolver.tables import ComponentTables
+
+# Finds a component by the name used in an expression: its tables, or a
+# message saying why it cannot be used there, or None when no such component exists.
+ComponentLookup = Callable[[str], "ComponentTables | str | None"]
+
+
+@dataclass(frozen=True)
+class ExprContext:
+    component: ComponentTables | None  # whose variables are named directly
+    value_type: m.DataType | None  # the type of ``value``; None where ``value`` means nothing
+    where: str  # for messages: "a requirement", "an enum rule", ...
+    no_value_reason: str = ""
+
+
+class ExpressionResolver:
+    def __init__(
+        self,
+        reporter: Reporter,
+        enum_values: dict[str, tuple[m.EnumType, m.EnumValue]],
+        components: ComponentLookup,
+        component_names: Callable[[], list[str]],
+    ) -> None:
+        self.reporter = reporter
+        self.enum_values = enum_values
+        self.components = components
+        self.component_names = component_names
+
+    # -- entry points --------------------------------------------------------------
+    def condition(self, syntax: s.Expr, context: ExprContext, what: str) -> m.Expr:
+        """An expression that must be boolean (a guard, a requirement, a provide condition)."""
+        expr = self.expr(syntax, context)
+        if not t.is_error(expr.type) and not t.is_boolean(expr.type):
+            self.reporter.error(expr.span, f"{what} must be a boolean expression, not {expr.type}", "types")
+        return expr
+
+    def expr(self, syntax: s.Expr, context: ExprContext) -> m.Expr:
+        if isinstance(syntax, s.Paren):
+            return self.expr(syntax.inner, context)
+        if isinstance(syntax, s.IntLit):
+            return m.Literal(syntax.value, m.INTEGER, syntax.span)
+        if isinstance(syntax, s.DoubleLit):
+            return m.Literal(syntax.value, m.DOUBLE, syntax.span)
+        if isinstance(syntax, s.StrLit):
+            return m.Literal(syntax.value, m.STRING, syntax.span)
+        if isinstance(syntax, s.BoolLit):
+            return m.Literal(syntax.value, m.BOOLEAN, syntax.span)
+        if isinstance(syntax, s.Unary):
+            operand = self.expr(syntax.operand, context)
+            result = t.unary_type(syntax.op, operand.type)
+            return m.Unary(syntax.op, operand, self._checked(result, syntax.span), syntax.span)
+        if isinstance(syntax, s.Binary):
+            left = self.expr(syntax.left, context)
+            right = self.expr(syntax.right, context)
+            result = t.binary_type(syntax.op, left.type, right.type)
+            return m.Binary(syntax.op, left, right, self._checked(result, syntax.span), syntax.span)
+        return self.access(syntax, context)
+
+    def _checked(self, result: m.DataType | str, span: s.Span) -> m.DataType:
+        if isinstance(result, str):
+            self.reporter.error(span, result, "types")
+            return m.ERROR
+        return result
+
+    # -- accesses --------------------------------------------------------------------
+    def access(self, syntax: s.Access, context: ExprContext) -> m.Expr:
+        if syntax.head is None:
+            return self._value(syntax, context)
+        name = syntax.head.text
+        steps = syntax.steps
+        own = context.component
+        if own is not None and name in own.variables:
+            return self._variable(own.variables[name], steps, syntax.span)
+        component = self.components(name)
+        if component is not None:
+            return self._component_member(name, component, syntax)
+        if name in self.enum_values:
+            enum, value = self.enum_values[name]
+            if steps:
+                self.reporter.error(steps[0].span, f"enum value '{name}' has no properties", "types")
+                return m.Invalid(syntax.span)
+            return m.EnumLiteral(enum, value, syntax.span)
+        candidates = list(self.component_names()) + list(self.enum_values)
+        if own is not None:
+            candidates += list(own.variables)
+        self.reporter.unknown(syntax.head.span, "name", name, candidates)
+        return m.Invalid(syntax.span)
+
+    def _value(self, syntax: s.Access, context: ExprContext) -> m.Expr:
+        if context.value_type is None:
+            reason = context.no_value_reason or f"'value' means nothing in {context.where}"
+            self.reporter.error(
+                syntax.span,
+                reason,
+                "types",
+                "'value' is the received data: use it in enum rules and in 'do' of transitions that receive data",
+            )
+            return m.Invalid(syntax.span)
+        steps, data_type = self.steps(context.value_type, syntax.steps)
+        return m.DataRef(steps, data_type, syntax.span)
+
+    def _component_member(self, name: str, component: ComponentTables | str, syntax: s.Access) -> m.Expr:
+        if isinstance(component, str):
+            if not component:  # its import failed, which is reported already
+                return m.Invalid(syntax.span)
+            self.reporter.error(syntax.head.span if syntax.head else syntax.span, component, "rule-14")
+            return m.Invalid(syntax.span)
+        if not syntax.steps or not isinstance(syntax.steps[0], s.MemberStep):
+            self.reporter.error(
+                syntax.span,
+                f"'{name}' is a component: name one of its states or variables, as in '{name}.<state>'",
+                "types",
+            )
+            return m.Invalid(syntax.span)
+        member = syntax.steps[0].name
+        rest = syntax.steps[1:]
+        if member.text in component.states:
+            if rest:
+                self.reporter.error(rest[0].span, f"state '{name}.{member.text}' has no properties", "types")
+                return m.Invalid(syntax.span)
+            return m.StateRef(component.states[member.text], syntax.span)
+        if member.text in component.variables:
+            return self._variable(component.variables[member.text], rest, syntax.span)
+        self.reporter.unknown(
+            member.span,
+            "state or variable",
+            member.text,
+            list(component.states) + list(component.variables),
+            f" in component '{name}'",
+        )
+        return m.Invalid(syntax.span)
+
+    def _variable(self, variable: m.Variable, steps: tuple[s.Step, ...], span: s.Span) -> m.Expr:
+        resolved, data_type = self.steps(variable.type, steps)
+        return m.VariableRef(variable, resolved, data_type, span)
+
+    def steps(self, data_type: m.DataType, steps: tuple[s.Step, ...]) -> tuple[tuple[m.Step, ...], m.DataType]:
+        """Follow ``.property`` and ``[n]`` steps into data of ``data_type``."""
+        resolved: list[m.Step] = []
+        for step in steps:
+            if t.is_error(data_type):
+                return tuple(resolved), data_type
+            if isinstance(step, s.IndexStep):
+                if not isinstance(data_type, m.ArrayType):
+                    self.reporter.error(step.span, f"cannot index [{step.index}] into {data_type}", "types")
+                    return tuple(resolved), m.ERROR
+                resolved.append(m.IndexStep(step.index))
+                data_type = data_type.element
+                continue
+            if not isinstance(data_type, m.ObjectType):
+                self.reporter.error(step.span, f"{data_type} has no property '{step.name.text}'", "types")
+                return tuple(resolved), m.ERROR
+            prop = data_type.property(step.name.text)
+            if prop is None:
+                self.reporter.unknown(
+                    step.name.span,
+                    "property",
+                    step.name.text,
+                    [p.name for p in data_type.properties],
+                    f" in {data_type.name}",
+                )
+                return tuple(resolved), m.ERROR
+            resolved.append(m.FieldStep(prop))
+            data_type = prop.type
+        return tuple(resolved), data_type

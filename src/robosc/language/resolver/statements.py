@@ -1,0 +1,75 @@
+"""Resolves the robot-level statements: requirements and provide statements."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from robosc.language import model as m
+from robosc.language import syntax as s
+from robosc.language.resolver.components import check_value_fits
+from robosc.language.resolver.expressions import ExpressionResolver, ExprContext
+from robosc.language.resolver.reporter import Reporter
+
+ROBOT_LEVEL = "'value' means nothing at robot level: name a component's state or variable instead"
+
+
+class StatementResolver:
+    def __init__(
+        self,
+        expressions: ExpressionResolver,
+        reporter: Reporter,
+        communications: Callable[[str], m.Communication | None],
+        communication_names: Callable[[], list[str]],
+    ) -> None:
+        self.expressions = expressions
+        self.reporter = reporter
+        self.communications = communications
+        self.communication_names = communication_names
+
+    def _communication(self, name: s.Name) -> m.Communication | None:
+        found = self.communications(name.text)
+        if found is None:
+            self.reporter.unknown(name.span, "communication", name.text, self.communication_names())
+        return found
+
+    def requirement(self, syntax: s.RequirementSyntax) -> m.Requirement:
+        found = (self._communication(n) for n in syntax.events.names)
+        communications = tuple(c for c in found if c is not None)
+        context = ExprContext(None, None, "a requirement", ROBOT_LEVEL)
+        condition = self.expressions.condition(syntax.condition, context, "a requirement")
+        return m.Requirement(m.RequirementKind(syntax.kind), communications, condition, syntax.span)
+
+    def provide(self, syntax: s.ProvideSyntax) -> m.Provide | None:
+        communication = self._communication(syntax.communication)
+        context = ExprContext(None, None, "a provide statement", ROBOT_LEVEL)
+        condition = None
+        if syntax.condition is not None:
+            condition = self.expressions.condition(syntax.condition, context, "a provide condition")
+        if communication is None:
+            return None
+        target = communication.request_type
+        data = self._data(syntax.data, target, context, f"the data of '{communication.name}'")
+        return m.Provide(communication, data, condition, syntax.span)
+
+    def _data(
+        self, syntax: s.Expr | s.ObjectValueSyntax, target: m.DataType, context: ExprContext, what: str
+    ) -> m.Expr | m.ObjectValue:
+        if not isinstance(syntax, s.ObjectValueSyntax):
+            value = self.expressions.expr(syntax, context)
+            check_value_fits(self.reporter, value, target, what)
+            return value
+        if not isinstance(target, m.ObjectType):
+            if not isinstance(target, m.ErrorType):
+                self.reporter.error(syntax.span, f"{what} is of type {target}, not an object", "types")
+            return m.ObjectValue(target, (), syntax.span)
+        fields = []
+        for field in syntax.fields:
+            prop = target.property(field.name.text)
+            if prop is None:
+                self.reporter.unknown(
+                    field.name.span, "property", field.name.text, [p.name for p in target.properties], f" in {target.name}"
+                )
+                continue
+            value = self._data(field.value, prop.type, context, f"property '{prop.name}'")
+            fields.append(m.FieldValue(prop, value, field.span))
+        return m.ObjectValue(target, tuple(fields), syntax.span)

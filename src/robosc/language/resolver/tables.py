@@ -1,0 +1,15 @@
+"""Name tables of one component, filled before any transition or requirement is resolved."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from robosc.language import model as m
+
+
+@dataclass
+class ComponentTables:
+    name: str  # the component's name in the robot (its owner label)
+    states: dict[str, m.State] = field(default_factory=dict)
+    variables: dict[str, m.Variable] = field(default_factory=dict)
+    communications: list[m.Communication] = field(default_factory=list)

@@ -1,0 +1,345 @@
+"""Syntax nodes: the parse of one file, before names are resolved.
+
+Every node keeps its :class:`Span`; spans take no part in equality, so two
+parses of differently laid-out text compare equal when they say the same thing
+(the formatter's round-trip test relies on this).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+from robosc.language.source import Span
+
+NO_SPAN = Span("", 0, 0, 0, 0, 0, 0)
+
+
+def _span() -> Span:
+    return field(default=NO_SPAN, compare=False, repr=False)
+
+
+@dataclass(frozen=True)
+class Name:
+    """An identifier as written (``^`` escapes already removed)."""
+
+    text: str
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class Comment:
+    text: str
+    span: Span = _span()
+
+
+# ---- expressions ---------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class IntLit:
+    value: int
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class DoubleLit:
+    text: str  # as written, e.g. "0.25"; keeps "100.0" distinct from "100.00" for fmt
+    span: Span = _span()
+
+    @property
+    def value(self) -> float:
+        return float(self.text)
+
+
+@dataclass(frozen=True)
+class StrLit:
+    raw: str  # with its quotes, as written
+    value: str
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class BoolLit:
+    value: bool
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class MemberStep:
+    name: Name
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class IndexStep:
+    index: int
+    span: Span = _span()
+
+
+Step = Union[MemberStep, IndexStep]
+
+
+@dataclass(frozen=True)
+class Access:
+    """``head.step[n]...``; ``head`` is None for the keyword ``value``."""
+
+    head: Name | None
+    steps: tuple[Step, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class Unary:
+    op: str  # "!" or "-"
+    operand: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class Binary:
+    op: str
+    left: Expr
+    right: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class Paren:
+    inner: Expr
+    span: Span = _span()
+
+
+Expr = Union[IntLit, DoubleLit, StrLit, BoolLit, Access, Unary, Binary, Paren]
+
+# ---- data types ----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class BasicTypeSyntax:
+    kind: str  # string, boolean, double, none, integer
+    low: int | None = None
+    high: int | None = None
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ArrayTypeSyntax:
+    element: TypeSyntax
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class NamedTypeSyntax:
+    name: Name
+    span: Span = _span()
+
+
+TypeSyntax = Union[BasicTypeSyntax, ArrayTypeSyntax, NamedTypeSyntax]
+
+
+@dataclass(frozen=True)
+class PropertySyntax:
+    name: Name
+    type: TypeSyntax
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ObjectTypeSyntax:
+    name: Name
+    properties: tuple[PropertySyntax, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class EnumRuleSyntax:
+    condition: Expr | None  # None for the default rule
+    value: Name
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class EnumTypeSyntax:
+    name: Name
+    source: TypeSyntax
+    rules: tuple[EnumRuleSyntax, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class InterfaceSyntax:
+    name: Name
+    ros_type: Name
+    package: Name
+    span: Span = _span()
+
+
+# ---- communication -------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class MessageSyntax:
+    direction: str  # "incoming" or "outgoing"
+    name: Name
+    identifier: StrLit | None
+    type: TypeSyntax
+    links: Name | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ServiceSyntax:
+    name: Name
+    identifier: StrLit | None
+    request: TypeSyntax
+    response: TypeSyntax
+    links: Name | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ActionSyntax:
+    name: Name
+    identifier: StrLit | None
+    request: TypeSyntax
+    response: TypeSyntax
+    feedback: TypeSyntax
+    links: Name | None
+    span: Span = _span()
+
+
+CommunicationSyntax = Union[MessageSyntax, ServiceSyntax, ActionSyntax]
+
+# ---- behaviour -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class VariableSyntax:
+    name: Name
+    type: TypeSyntax
+    initial: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class AssignmentSyntax:
+    target: Access
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ResultTransitionSyntax:
+    result: str  # request, response, feedback, error, cancel
+    preposition: str  # from, to
+    communication: Name
+    assignments: tuple[AssignmentSyntax, ...]
+    target: Name | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class TauTransitionSyntax:
+    guard: Expr | None
+    target: Name | None
+    span: Span = _span()
+
+
+TransitionSyntax = Union[ResultTransitionSyntax, TauTransitionSyntax]
+
+
+@dataclass(frozen=True)
+class StateSyntax:
+    name: Name
+    initial: bool
+    marked: bool
+    transitions: tuple[TransitionSyntax, ...]
+    span: Span = _span()
+
+
+BehaviourItem = Union[VariableSyntax, StateSyntax, ResultTransitionSyntax, TauTransitionSyntax]
+
+
+@dataclass(frozen=True)
+class BehaviourSyntax:
+    items: tuple[BehaviourItem, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class LocalComponentSyntax:
+    name: Name
+    items: tuple[BehaviourSyntax | CommunicationSyntax, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ImportedComponentSyntax:
+    name: Name
+    library: Name
+    component: Name
+    span: Span = _span()
+
+
+ComponentSyntax = Union[LocalComponentSyntax, ImportedComponentSyntax]
+
+# ---- robot-level statements ----------------------------------------------
+
+
+@dataclass(frozen=True)
+class EventsSyntax:
+    names: tuple[Name, ...]
+    is_set: bool
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class RequirementSyntax:
+    kind: str  # "needs" or "disables"
+    events: EventsSyntax
+    condition: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class FieldValueSyntax:
+    name: Name
+    value: Expr | ObjectValueSyntax
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ObjectValueSyntax:
+    fields: tuple[FieldValueSyntax, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True)
+class ProvideSyntax:
+    communication: Name
+    data: Expr | ObjectValueSyntax
+    condition: Expr | None
+    span: Span = _span()
+
+
+Definition = Union[
+    LocalComponentSyntax,
+    ImportedComponentSyntax,
+    RequirementSyntax,
+    ProvideSyntax,
+    ObjectTypeSyntax,
+    EnumTypeSyntax,
+    InterfaceSyntax,
+]
+
+
+@dataclass(frozen=True)
+class FileSyntax:
+    """One parsed file: a ``robot`` or a ``library``."""
+
+    kind: str  # "robot" or "library"
+    name: Name
+    definitions: tuple[Definition, ...]
+    comments: tuple[Comment, ...] = field(default=(), compare=False, repr=False)
+    span: Span = _span()

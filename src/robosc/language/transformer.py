@@ -1,0 +1,286 @@
+"""Turns Lark's parse tree into :mod:`robosc.language.syntax` nodes.
+
+The grammar (``grammar.lark``) says what is valid; this module only builds
+nodes from it. One method per grammar rule or alias.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from lark import Token, Transformer, v_args
+from lark.tree import Meta
+
+from robosc.language import syntax as s
+from robosc.language.keywords import KEYWORDS
+from robosc.language.source import Span
+
+MAX_EXPRESSION_DEPTH = 100
+
+
+class SyntaxProblem(Exception):
+    """A problem found while building nodes (the grammar alone cannot see it)."""
+
+    def __init__(self, span: Span, message: str, hint: str | None = None) -> None:
+        super().__init__(message)
+        self.span = span
+        self.message = message
+        self.hint = hint
+
+
+_ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "b": "\b", "f": "\f", "0": "\0"}
+_ESCAPE = re.compile(r"\\(.)", re.DOTALL)
+
+
+def _unescape_string(raw: str) -> str:
+    """The value of a string literal: quotes removed, backslash escapes applied."""
+    return _ESCAPE.sub(lambda m: _ESCAPES.get(m.group(1), m.group(1)), raw[1:-1])
+
+
+@v_args(meta=True)
+class SyntaxBuilder(Transformer[Token, s.FileSyntax]):
+    def __init__(self, path: str, comments: tuple[s.Comment, ...]) -> None:
+        super().__init__()
+        self.path = path
+        self.comments = comments
+        self._depth: dict[int, int] = {}
+
+    # -- helpers -------------------------------------------------------------
+    def _span(self, meta: Meta) -> Span:
+        if getattr(meta, "empty", True):
+            return s.NO_SPAN
+        return Span(
+            self.path, meta.line, meta.column, meta.end_line, meta.end_column, meta.start_pos, meta.end_pos
+        )
+
+    def token_span(self, token: Token) -> Span:
+        return Span(
+            self.path,
+            token.line or 0,
+            token.column or 0,
+            token.end_line or 0,
+            token.end_column or 0,
+            token.start_pos or 0,
+            token.end_pos or 0,
+        )
+
+    def _expr(self, node: s.Expr, *children: Any) -> s.Expr:
+        depth = 1 + max((self._depth.get(id(c), 0) for c in children), default=0)
+        if depth > MAX_EXPRESSION_DEPTH:
+            raise SyntaxProblem(node.span, f"expression nested more than {MAX_EXPRESSION_DEPTH} levels deep")
+        self._depth[id(node)] = depth
+        return node
+
+    # -- file ----------------------------------------------------------------
+    def start(self, meta: Meta, ch: list[Any]) -> s.FileSyntax:
+        file: s.FileSyntax = ch[0]
+        return file
+
+    def robot(self, meta: Meta, ch: list[Any]) -> s.FileSyntax:
+        return s.FileSyntax("robot", ch[0], tuple(ch[1:]), self.comments, self._span(meta))
+
+    def library(self, meta: Meta, ch: list[Any]) -> s.FileSyntax:
+        return s.FileSyntax("library", ch[0], tuple(ch[1:]), self.comments, self._span(meta))
+
+    def name(self, meta: Meta, ch: list[Token]) -> s.Name:
+        text = str(ch[0])
+        if text in KEYWORDS:
+            raise SyntaxProblem(
+                self._span(meta), f"'{text}' is a keyword, not a name", f"write '^{text}' to use it as a name"
+            )
+        return s.Name(text[1:] if text.startswith("^") else text, self._span(meta))
+
+    # -- components ------------------------------------------------------------
+    def local_component(self, meta: Meta, ch: list[Any]) -> s.LocalComponentSyntax:
+        return s.LocalComponentSyntax(ch[0], tuple(ch[1:]), self._span(meta))
+
+    def imported_component(self, meta: Meta, ch: list[Any]) -> s.ImportedComponentSyntax:
+        return s.ImportedComponentSyntax(ch[0], ch[1], ch[2], self._span(meta))
+
+    def behaviour(self, meta: Meta, ch: list[Any]) -> s.BehaviourSyntax:
+        return s.BehaviourSyntax(tuple(ch), self._span(meta))
+
+    def direction(self, meta: Meta, ch: list[Token]) -> str:
+        return str(ch[0])
+
+    def identifier(self, meta: Meta, ch: list[Token]) -> s.StrLit:
+        return self.string_literal(meta, ch)  # type: ignore[return-value]
+
+    def links(self, meta: Meta, ch: list[s.Name]) -> s.Name:
+        return ch[0]
+
+    @staticmethod
+    def _optional(ch: list[Any], kind: type) -> tuple[Any | None, list[Any]]:
+        """Split off an optional leading child of ``kind``."""
+        if ch and isinstance(ch[0], kind):
+            return ch[0], ch[1:]
+        return None, ch
+
+    def message(self, meta: Meta, ch: list[Any]) -> s.MessageSyntax:
+        direction, name, *rest = ch
+        identifier, rest = self._optional(rest, s.StrLit)
+        links = rest[1] if len(rest) > 1 else None
+        return s.MessageSyntax(direction, name, identifier, rest[0], links, self._span(meta))
+
+    def service(self, meta: Meta, ch: list[Any]) -> s.ServiceSyntax:
+        name, *rest = ch
+        identifier, rest = self._optional(rest, s.StrLit)
+        links = rest[2] if len(rest) > 2 else None
+        return s.ServiceSyntax(name, identifier, rest[0], rest[1], links, self._span(meta))
+
+    def action(self, meta: Meta, ch: list[Any]) -> s.ActionSyntax:
+        name, *rest = ch
+        identifier, rest = self._optional(rest, s.StrLit)
+        links = rest[3] if len(rest) > 3 else None
+        return s.ActionSyntax(name, identifier, rest[0], rest[1], rest[2], links, self._span(meta))
+
+    def variable(self, meta: Meta, ch: list[Any]) -> s.VariableSyntax:
+        return s.VariableSyntax(ch[0], ch[1], ch[2] if len(ch) > 2 else None, self._span(meta))
+
+    def state(self, meta: Meta, ch: list[Any]) -> s.StateSyntax:
+        flags = {str(c) for c in ch if isinstance(c, Token)}
+        rest = [c for c in ch if not isinstance(c, Token)]
+        return s.StateSyntax(rest[0], "initial" in flags, "marked" in flags, tuple(rest[1:]), self._span(meta))
+
+    def result_type(self, meta: Meta, ch: list[Token]) -> str:
+        return str(ch[0])
+
+    preposition = result_type
+
+    def result_transition(self, meta: Meta, ch: list[Any]) -> s.ResultTransitionSyntax:
+        result, preposition, communication, *rest = ch
+        assignments: tuple[s.AssignmentSyntax, ...] = ()
+        target = None
+        for part in rest:
+            if isinstance(part, tuple):
+                assignments = part
+            else:
+                target = part
+        return s.ResultTransitionSyntax(
+            result, preposition, communication, assignments, target, self._span(meta)
+        )
+
+    def do(self, meta: Meta, ch: list[s.AssignmentSyntax]) -> tuple[s.AssignmentSyntax, ...]:
+        return tuple(ch)
+
+    def goto(self, meta: Meta, ch: list[s.Name]) -> s.Name:
+        return ch[0]
+
+    def guard(self, meta: Meta, ch: list[Any]) -> tuple[str, s.Expr]:
+        return ("guard", ch[0])
+
+    def tau_transition(self, meta: Meta, ch: list[Any]) -> s.TauTransitionSyntax:
+        guard = None
+        target = None
+        for part in ch:
+            if isinstance(part, tuple):
+                guard = part[1]
+            else:
+                target = part
+        return s.TauTransitionSyntax(guard, target, self._span(meta))
+
+    def assignment(self, meta: Meta, ch: list[Any]) -> s.AssignmentSyntax:
+        return s.AssignmentSyntax(ch[0], ch[1], self._span(meta))
+
+    # -- data types ------------------------------------------------------------
+    def basic_type(self, meta: Meta, ch: list[Token]) -> s.BasicTypeSyntax:
+        return s.BasicTypeSyntax(str(ch[0]), span=self._span(meta))
+
+    def integer_type(self, meta: Meta, ch: list[int]) -> s.BasicTypeSyntax:
+        if ch:
+            return s.BasicTypeSyntax("integer", ch[0], ch[1], self._span(meta))
+        return s.BasicTypeSyntax("integer", span=self._span(meta))
+
+    def signed_int(self, meta: Meta, ch: list[Token]) -> int:
+        return -int(ch[1]) if len(ch) == 2 else int(ch[0])
+
+    def array_type(self, meta: Meta, ch: list[Any]) -> s.ArrayTypeSyntax:
+        return s.ArrayTypeSyntax(ch[0], self._span(meta))
+
+    def named_type(self, meta: Meta, ch: list[s.Name]) -> s.NamedTypeSyntax:
+        return s.NamedTypeSyntax(ch[0], self._span(meta))
+
+    def datatype_def(self, meta: Meta, ch: list[Any]) -> Any:
+        return ch[0]
+
+    def object_type(self, meta: Meta, ch: list[Any]) -> s.ObjectTypeSyntax:
+        return s.ObjectTypeSyntax(ch[0], tuple(ch[1:]), self._span(meta))
+
+    def property(self, meta: Meta, ch: list[Any]) -> s.PropertySyntax:
+        return s.PropertySyntax(ch[0], ch[1], self._span(meta))
+
+    def enum_type(self, meta: Meta, ch: list[Any]) -> s.EnumTypeSyntax:
+        return s.EnumTypeSyntax(ch[0], ch[1], tuple(ch[2:]), self._span(meta))
+
+    def enum_rule(self, meta: Meta, ch: list[Any]) -> s.EnumRuleSyntax:
+        return s.EnumRuleSyntax(ch[0], ch[1], self._span(meta))
+
+    def enum_default(self, meta: Meta, ch: list[Any]) -> s.EnumRuleSyntax:
+        return s.EnumRuleSyntax(None, ch[0], self._span(meta))
+
+    def interface(self, meta: Meta, ch: list[s.Name]) -> s.InterfaceSyntax:
+        return s.InterfaceSyntax(ch[0], ch[1], ch[2], self._span(meta))
+
+    # -- requirements and provide ----------------------------------------------
+    def needs_requirement(self, meta: Meta, ch: list[Any]) -> s.RequirementSyntax:
+        return s.RequirementSyntax("needs", ch[0], ch[1], self._span(meta))
+
+    def disables_requirement(self, meta: Meta, ch: list[Any]) -> s.RequirementSyntax:
+        return s.RequirementSyntax("disables", ch[1], ch[0], self._span(meta))
+
+    def single_event(self, meta: Meta, ch: list[s.Name]) -> s.EventsSyntax:
+        return s.EventsSyntax((ch[0],), False, self._span(meta))
+
+    def event_set(self, meta: Meta, ch: list[s.Name]) -> s.EventsSyntax:
+        return s.EventsSyntax(tuple(ch), True, self._span(meta))
+
+    def provide(self, meta: Meta, ch: list[Any]) -> s.ProvideSyntax:
+        return s.ProvideSyntax(ch[0], ch[1], ch[2] if len(ch) > 2 else None, self._span(meta))
+
+    def object_value(self, meta: Meta, ch: list[s.FieldValueSyntax]) -> s.ObjectValueSyntax:
+        return s.ObjectValueSyntax(tuple(ch), self._span(meta))
+
+    def field_value(self, meta: Meta, ch: list[Any]) -> s.FieldValueSyntax:
+        return s.FieldValueSyntax(ch[0], ch[1], self._span(meta))
+
+    # -- expressions -------------------------------------------------------------
+    def binary(self, meta: Meta, ch: list[Any]) -> s.Expr:
+        left, op, right = ch
+        return self._expr(s.Binary(str(op), left, right, self._span(meta)), left, right)
+
+    def unary(self, meta: Meta, ch: list[Any]) -> s.Expr:
+        op, operand = ch
+        return self._expr(s.Unary(str(op), operand, self._span(meta)), operand)
+
+    def paren(self, meta: Meta, ch: list[Any]) -> s.Expr:
+        return self._expr(s.Paren(ch[0], self._span(meta)), ch[0])
+
+    def int_literal(self, meta: Meta, ch: list[Token]) -> s.IntLit:
+        return s.IntLit(int(ch[0]), self._span(meta))
+
+    def double_literal(self, meta: Meta, ch: list[Token]) -> s.DoubleLit:
+        return s.DoubleLit(str(ch[0]), self._span(meta))
+
+    def negative_int(self, meta: Meta, ch: list[Token]) -> s.Expr:
+        return s.Unary("-", self.int_literal(meta, [ch[1]]), self._span(meta))
+
+    def negative_double(self, meta: Meta, ch: list[Token]) -> s.Expr:
+        return s.Unary("-", self.double_literal(meta, [ch[1]]), self._span(meta))
+
+    def string_literal(self, meta: Meta, ch: list[Token]) -> s.StrLit:
+        raw = str(ch[0])
+        return s.StrLit(raw, _unescape_string(raw), self._span(meta))
+
+    def bool_literal(self, meta: Meta, ch: list[Token]) -> s.BoolLit:
+        return s.BoolLit(str(ch[0]) == "true", self._span(meta))
+
+    def access(self, meta: Meta, ch: list[Any]) -> s.Access:
+        head = None if isinstance(ch[0], Token) else ch[0]
+        return s.Access(head, tuple(ch[1:]), self._span(meta))
+
+    def index_step(self, meta: Meta, ch: list[Token]) -> s.IndexStep:
+        return s.IndexStep(int(ch[0]), self._span(meta))
+
+    def member_step(self, meta: Meta, ch: list[s.Name]) -> s.MemberStep:
+        return s.MemberStep(ch[0], self._span(meta))
