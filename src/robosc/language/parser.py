@@ -119,6 +119,8 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
         if len(shown) > 30:
             shown = shown[:27] + "..."
         span = _point(path, text, exc.line, exc.column, token.start_pos or 0, max(1, len(str(token))))
+        if text.startswith("/*", token.start_pos or 0):
+            return error(span, "unterminated comment (missing '*/')", "syntax")
         if token.type in parser.lexer_conf.terminals_by_name and token.type != "NAME":
             what = f"'{shown}'"
             hint = (

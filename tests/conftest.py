@@ -1,0 +1,48 @@
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from robosc.api import CheckResult, check_file
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def codes(result: CheckResult) -> list[str]:
+    return [d.code for d in result.diagnostics]
+
+
+def messages(result: CheckResult) -> str:
+    return "\n".join(d.message for d in result.diagnostics)
+
+
+@pytest.fixture
+def check(tmp_path: Path):
+    """check(robot_text, **libraries) -> CheckResult; libraries are written next to the robot."""
+
+    def run(text: str, **libraries: str) -> CheckResult:
+        for name, lib in libraries.items():
+            (tmp_path / f"{name}.rscd").write_text(lib, encoding="utf-8")
+        path = tmp_path / "model.rscd"
+        path.write_text(text, encoding="utf-8")
+        return check_file(path)
+
+    return run
+
+
+def robot(*body: str) -> str:
+    """A robot around ``body`` with one valid component to refer to."""
+    return (
+        "robot R {\n"
+        "  component S {\n"
+        "    outgoing message sense with type: boolean\n"
+        "    incoming message act with type: none\n"
+        "    behaviour {\n"
+        "      variable active: boolean = false\n"
+        "      on response from sense do active := value\n"
+        "      initial marked state idle { on request to act goto busy }\n"
+        "      state busy { transition goto idle }\n"
+        "    }\n"
+        "  }\n" + "\n".join(body) + "\n}\n"
+    )

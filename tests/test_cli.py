@@ -1,0 +1,103 @@
+"""``robosc check`` and ``robosc fmt`` exit codes and output."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import EXAMPLES, robot
+
+from robosc.cli.main import main
+
+
+def run(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "robosc", *args], capture_output=True, text=True, timeout=60, check=False
+    )
+
+
+def test_check_examples_exit_zero():
+    result = run("check", *(str(p) for p in sorted(EXAMPLES.glob("*.rscd"))))
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.count(": ok") == 4
+
+
+def test_check_model_with_errors_exits_one(tmp_path: Path):
+    bad = tmp_path / "bad.rscd"
+    bad.write_text(robot("requirement act needs S.idel"))
+    result = run("check", str(bad))
+    assert result.returncode == 1
+    assert f"{bad}:12:25: error: unknown state or variable 'idel'" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_check_json(tmp_path: Path):
+    bad = tmp_path / "bad.rscd"
+    bad.write_text(robot("requirement act needs S.idel"))
+    result = run("check", "--format", "json", str(bad))
+    assert result.returncode == 1
+    assert json.loads(result.stdout)[0]["message"] == "unknown state or variable 'idel' in component 'S'"
+
+
+def test_warnings_alone_exit_zero(tmp_path: Path, capsys):
+    model = tmp_path / "w.rscd"
+    model.write_text(robot(
+        'component A { outgoing message a with identifier: "/t", type: none }',
+        'component B { outgoing message b with identifier: "/t", type: none }',
+    ))
+    assert main(["check", str(model)]) == 0
+    out = capsys.readouterr().out
+    assert "warning: 'B' and 'A' both publish to topic '/t'" in out and "ok (1 warning)" in out
+
+
+def test_include_option_finds_libraries(tmp_path: Path):
+    model = tmp_path / "r.rscd"
+    model.write_text(robot("component E from EmergencyStopLibrary import EmergencyStop"))
+    assert main(["check", str(model)]) == 1
+    assert main(["check", "-I", str(EXAMPLES), str(model)]) == 0
+
+
+@pytest.mark.parametrize(
+    ("setup", "message"),
+    [
+        (lambda d: str(d / "missing.rscd"), "no such file"),
+        (lambda d: str(d), "is a directory"),
+        (lambda d: (d / "x.rscd").write_bytes(b"robot R { \xff }") and str(d / "x.rscd"), "not UTF-8"),
+    ],
+)
+def test_input_problems_exit_two(tmp_path: Path, capsys, setup, message: str):
+    path = setup(tmp_path)
+    assert main(["check", path]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_usage_errors_exit_two(capsys):
+    assert main(["check"]) == 2
+    assert main(["frobnicate"]) == 2
+
+
+def test_fmt_prints_canonical_layout(tmp_path: Path, capsys):
+    model = tmp_path / "m.rscd"
+    model.write_text("robot   R{component C{outgoing message m with type:none}requirement m needs true}")
+    assert main(["fmt", str(model)]) == 0
+    assert capsys.readouterr().out == (
+        "robot R {\n"
+        "    component C {\n"
+        "        outgoing message m with type: none\n"
+        "    }\n\n"
+        "    requirement m needs true\n"
+        "}\n"
+    )
+    assert main(["fmt", "--check", str(model)]) == 1
+    assert main(["fmt", "--write", str(model)]) == 0
+    assert main(["fmt", "--check", str(model)]) == 0
+
+
+def test_fmt_syntax_error_exits_one(tmp_path: Path, capsys):
+    model = tmp_path / "m.rscd"
+    model.write_text("robot R {")
+    assert main(["fmt", str(model)]) == 1
+    assert "m.rscd:1:10: error: unexpected end of file" in capsys.readouterr().err

@@ -1,0 +1,47 @@
+"""The bundled examples load and say what the issue asks of them."""
+
+from __future__ import annotations
+
+from conftest import EXAMPLES
+
+from robosc.api import load_model
+from robosc.language import model as m
+
+
+def test_line_follower():
+    model = load_model(EXAMPLES / "line_follower.rscd")
+    assert [c.name for c in model.components] == ["LineDetector", "Lidar", "Platform", "EmergencyStop"]
+    assert model.component("EmergencyStop").library == "EmergencyStopLibrary"
+    move = model.communication("move")
+    assert isinstance(move, m.Message) and move.direction is m.Direction.INCOMING
+    assert move.interface.ros_type == "Twist" and move.interface.package == "geometry_msgs"
+    scan = model.communication("scan")
+    assert isinstance(scan.type, m.EnumType) and scan.type.source.name == "LaserScan"
+    correction = model.component("LineDetector").automaton.variable("current_correction")
+    assert correction.type == m.DOUBLE and correction not in m.synthesis_variables(model)
+
+
+def test_maze_solver():
+    model = load_model(EXAMPLES / "maze_solver.rscd")
+    enums = {e.name for e in model.enums}
+    assert enums == {"WallFront", "WallRight", "WallDiagRight"}
+    assert {c.name for c in model.requirements[0].communications} == {"movement"}
+    assert {v.name for v in m.synthesis_variables(model)} == {"front", "right", "diag_right"}
+
+
+def test_pick_and_light_uses_every_construct():
+    model = load_model(EXAMPLES / "pick_and_light.rscd")
+    kinds = {type(c) for c in model.communications}
+    assert kinds == {m.Message, m.Service, m.Action}
+    arm = model.component("Arm").automaton
+    results = {t.result for t in arm.transitions if isinstance(t, m.ResultTransition)}
+    assert {m.ResultKind.REQUEST, m.ResultKind.RESPONSE, m.ResultKind.FEEDBACK,
+            m.ResultKind.ERROR, m.ResultKind.CANCEL} <= results
+    assert any(t.source is None for t in arm.transitions)  # a global transition
+    assert any(isinstance(t, m.TauTransition) and t.guard is not None for t in arm.transitions)
+    assert arm.variable("picks").type.is_ranged_integer
+    pose = next(t for t in model.data_types if t.name == "Pose")
+    assert isinstance(pose.properties[0].type, m.ObjectType)  # nested properties
+    assert {p.condition is None for p in model.provides} == {True, False}
+    assert {r.kind for r in model.requirements} == {m.RequirementKind.NEEDS, m.RequirementKind.DISABLES}
+    assert any(len(r.communications) > 1 for r in model.requirements)

@@ -1,0 +1,271 @@
+"""Each static rule of LANGUAGE.md section 5: a model that breaks it, and one that keeps it."""
+
+from __future__ import annotations
+
+import pytest
+
+from conftest import codes, messages, robot
+
+COMPONENT = """
+  component C {{
+    {comms}
+    behaviour {{
+      {body}
+    }}
+  }}"""
+
+
+def component(body: str, comms: str = "outgoing message m with type: boolean") -> str:
+    return COMPONENT.format(comms=comms, body=body)
+
+
+OK_STATES = "initial marked state a {}"
+
+CASES = {
+    "rule-1": [
+        (robot(component(OK_STATES), component(OK_STATES).replace("m with", "m2 with")), "component 'C'"),
+        (robot(component(OK_STATES, "outgoing message sense with type: none")), "communication 'sense'"),
+        (robot(component("initial marked state a {} state a {}")), "state 'a' of 'C'"),
+        (robot(component("variable v: boolean variable v: boolean " + OK_STATES)), "variable 'v' of 'C'"),
+        (robot("datatype object P { x: double x: double }"), "property 'x' of P"),
+        (robot("datatype object P {} datatype object P {}"), "data type 'P'"),
+        (robot("interface i use A from b interface i use A from b"), "interface 'i'"),
+        (robot("datatype enum E from double to { default -> idle }"), "name of state 'S.idle'"),
+        (
+            robot("datatype enum E from double to { default -> v }", "datatype enum F from double to { default -> v }"),
+            "enum value 'v'",
+        ),
+    ],
+    "rule-2": [
+        (robot(component("marked state a {}")), "no initial state"),
+        (robot(component("initial marked state a {} initial state b { transition goto a }")), "more than one initial"),
+    ],
+    "rule-3": [
+        (robot(component("initial state a {}")), "no state of 'C' is marked"),
+        (robot(component("initial marked state a { transition goto b } state b {}")), "'C.b' is reachable"),
+    ],
+    "rule-4": [
+        (
+            robot("component C { behaviour { initial marked state a {} } behaviour { initial marked state b {} } }"),
+            "more than one behaviour",
+        ),
+    ],
+    "rule-5": [
+        (robot(component("initial marked state a { on request to m }")), "'request' does not fit 'm'"),
+        (
+            robot(component("initial marked state a { on response from m }", "incoming message m with type: none")),
+            "'response' does not fit 'm'",
+        ),
+        (
+            robot(component("initial marked state a { on feedback from m }", "service m with request: none, response: none")),
+            "a service has",
+        ),
+        (
+            robot(component("initial marked state a { on cancel to m }", "service m with request: none, response: none")),
+            "a service has",
+        ),
+    ],
+    "rule-6": [
+        (
+            robot(
+                component(
+                    "variable n: integer initial marked state a { on request to m do n := 1 }",
+                    "incoming message m with type: integer",
+                )
+            ),
+            "no assignment on a request to 'm'",
+        ),
+    ],
+    "rule-7": [
+        (robot(component("initial marked state a { on response from m do S.active := value }")), "cannot assign 'S.active'"),
+    ],
+    "rule-8": [
+        (robot(component(OK_STATES), "provide m with true"), "cannot provide data for 'm'"),
+    ],
+    "rule-9": [
+        (robot(component("variable n: integer initial marked state a { transition if n > 1 }")), "needs a range"),
+        (robot(component("variable n: integer " + OK_STATES), "requirement act needs C.n = 2"), "needs a range"),
+    ],
+    "rule-10": [
+        (robot(component("variable d: double initial marked state a { transition if d > 1.0 }")), "only booleans, ranged integers and enums"),
+        (
+            robot(
+                component("variable t: string " + OK_STATES, "incoming message m with type: integer"),
+                "provide m with 1 if C.t = 'x'",
+            ),
+            "type string",
+        ),
+    ],
+    "rule-11": [
+        (
+            robot(
+                "datatype enum E from double to { default -> e1 }",
+                "datatype enum F from E to { value = e1 -> f1 default -> f2 }",
+            ),
+            "converted from enum 'E'",
+        ),
+    ],
+    "rule-12": [
+        (
+            robot("datatype object P { x: double }", component(OK_STATES, "outgoing message m with type: P")),
+            "must link the ROS interface",
+        ),
+        (
+            robot(
+                "datatype object P { x: double }",
+                "datatype enum E from P to { value.x > 1.0 -> big default -> small }",
+                component(OK_STATES, "outgoing message m with type: E"),
+            ),
+            "must link the ROS interface",
+        ),
+    ],
+    "rule-13": [
+        (
+            robot(component(OK_STATES, 'outgoing message m with identifier: "/topic", type: none'),
+                  "component D { outgoing message n with identifier: \"/topic\", type: none }"),
+            "both publish to topic '/topic'",
+        ),
+    ],
+    "rule-14": [
+        (robot("requirement act needs S.idel"), "unknown state or variable 'idel'"),
+        (robot("requirement acts needs true"), "unknown communication 'acts'"),
+        (robot(component("initial marked state a { transition goto b }")), "unknown state 'b'"),
+        (robot(component("variable v: Missing " + OK_STATES)), "unknown data type 'Missing'"),
+        (robot(component(OK_STATES, "outgoing message m with type: none links nothing")), "unknown interface"),
+        (robot("requirement act needs Sx.idle"), "unknown name 'Sx'"),
+        (robot("component I from Nowhere import C"), "unknown library 'Nowhere'"),
+    ],
+    "rule-15": [
+        (robot(component(OK_STATES, 'outgoing message m with identifier: "/a//b", type: none')), "empty part"),
+        (robot(component(OK_STATES, 'outgoing message m with identifier: "/9lives", type: none')), "start with a letter"),
+        (robot(component(OK_STATES, 'outgoing message m with identifier: "/a/", type: none')), "ends with '/'"),
+        (robot(component(OK_STATES, 'outgoing message m with identifier: "/a b", type: none')), "only letters"),
+        (robot(component(OK_STATES, 'outgoing message m with identifier: "", type: none')), "empty"),
+    ],
+    "enum-default": [
+        (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
+        (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
+    ],
+}
+
+VALID = {
+    "rule-1": robot(component(OK_STATES), "datatype enum E from double to { value > 1.0 -> big default -> small }"),
+    "rule-2": robot(component("initial marked state a { transition goto b } state b { transition goto a }")),
+    "rule-3": robot(component("initial state a { transition goto b } marked state b { transition goto a }")),
+    "rule-4": robot(component(OK_STATES)),
+    "rule-5": robot(
+        component(
+            "initial marked state a { on request to s on response from s on error from s "
+            "on request to x on response from x on feedback from x on error from x on cancel to x }",
+            "service s with request: none, response: none action x with request: none, response: none, feedback: none",
+        )
+    ),
+    "rule-6": robot(component("variable n: integer initial marked state a { on response from m do n := 1 }")),
+    "rule-7": robot(component("variable v: boolean initial marked state a { on response from m do v := value }")),
+    "rule-8": robot(component(OK_STATES, "incoming message m with type: integer"), "provide m with 3 if S.idle"),
+    "rule-9": robot(component("variable n: integer(0..3) initial marked state a { transition if n > 1 }")),
+    "rule-10": robot(
+        component("variable d: double initial marked state a { on response from m do d := 1.0 }"),
+        "requirement act needs C.a",
+    ),
+    "rule-11": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
+    "rule-12": robot(
+        "datatype object P { x: double }",
+        "interface p use Point from geometry_msgs",
+        component(OK_STATES, "outgoing message m with type: P links p"),
+    ),
+    "rule-13": robot(
+        component(OK_STATES, 'outgoing message m with identifier: "/topic", type: none'),
+        "component D { incoming message n with identifier: \"/topic\", type: none }",
+    ),
+    "rule-14": robot("requirement act needs S.idle and S.active"),
+    "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
+    "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
+}
+
+
+@pytest.mark.parametrize(
+    ("code", "text", "fragment"),
+    [(code, text, fragment) for code, cases in CASES.items() for text, fragment in cases],
+)
+def test_rule_violation_is_reported(check, code: str, text: str, fragment: str):
+    result = check(text)
+    assert code in codes(result), result.render()
+    relevant = [d for d in result.diagnostics if d.code == code]
+    assert any(fragment in d.message for d in relevant), result.render()
+    assert all(d.span.line >= 1 and d.span.path.endswith("model.rscd") for d in relevant)
+
+
+@pytest.mark.parametrize("code", sorted(VALID))
+def test_model_that_keeps_the_rule_passes(check, code: str):
+    result = check(VALID[code])
+    assert result.diagnostics == (), result.render()
+    assert result.ok and result.model is not None
+
+
+def test_every_rule_has_a_test():
+    numbered = {f"rule-{n}" for n in range(1, 16)}
+    assert numbered <= set(CASES) and numbered <= set(VALID)
+
+
+def test_shared_topic_is_only_a_warning(check):
+    result = check(CASES["rule-13"][0][0])
+    assert result.ok and result.model is not None
+    assert [d.severity.value for d in result.diagnostics] == ["warning"]
+
+
+def test_all_semantic_errors_of_a_file_are_reported_in_one_run(check):
+    result = check(robot(
+        component("variable n: integer initial state a { transition if n > 1 goto zz }"),
+        "requirement nope needs S.idle",
+        "provide sense with true",
+    ))
+    assert {"rule-3", "rule-9", "rule-14", "rule-8"} <= set(codes(result)), result.render()
+
+
+TYPE_ERRORS = [
+    ("requirement act needs 1 + 2", "a requirement must be a boolean expression"),
+    ("requirement act needs S.active and 3", "'and' needs boolean operands"),
+    ("requirement act needs S.active > 1", "'>' needs numeric operands"),
+    ("requirement act needs S.active = 1", "cannot compare boolean with integer"),
+    ("requirement act needs !3", "'!' needs a boolean operand"),
+    ("requirement act needs -S.active", "'-' needs a numeric operand"),
+    ("requirement act needs value", "'value' means nothing at robot level"),
+    ("requirement act needs S", "'S' is a component"),
+    ("requirement act needs S.idle.x", "state 'S.idle' has no properties"),
+    ("datatype enum E from double to { value.x > 1.0 -> a default -> b }", "double has no property 'x'"),
+    ("datatype enum E from double to { value[0] > 1.0 -> a default -> b }", "cannot index [0] into double"),
+    ("datatype enum E from integer to { value -> a default -> b }", "an enum rule must be a boolean expression"),
+    ("datatype enum E from double to { default -> a } datatype enum F from double to { default -> b } "
+     "requirement act needs a = b", "cannot compare E with F"),
+]
+
+
+@pytest.mark.parametrize(("statement", "fragment"), TYPE_ERRORS)
+def test_type_rules(check, statement: str, fragment: str):
+    result = check(robot(statement))
+    assert fragment in messages(result), result.render()
+    assert "types" in codes(result)
+
+
+def test_assignment_value_must_fit_variable(check):
+    text = robot(component("variable n: integer(0..3) = 7 initial marked state a { on response from m do n := value }"))
+    result = check(text)
+    assert "7 is outside the range of variable 'n' (integer(0..3))" in messages(result)
+    assert "a value of type boolean does not fit 'n' of type integer(0..3)" in messages(result)
+
+
+def test_arithmetic_result_types(check):
+    result = check(robot(component(
+        "variable i: integer(0..9) variable d: double "
+        "initial marked state a { on response from m do i := 1 + 2 * 3, d := 1 / 2, d := 1 - 0.5, i := 4 / 2 }"
+    )))
+    assert messages(result).count("does not fit") == 1  # only 4 / 2 (a double) into an integer
+    assert "a value of type double does not fit 'i'" in messages(result)
+
+
+def test_synthesis_variable_hint_says_use_an_enum(check):
+    result = check(robot(component("variable d: double initial marked state a { transition if d > 1.0 }")))
+    assert [d.hint for d in result.diagnostics if d.code == "rule-10"] == [
+        "use an enum that turns the data into a few named values"
+    ]
