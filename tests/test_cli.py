@@ -8,8 +8,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES, robot
 
+from conftest import EXAMPLES, robot
 from robosc.cli.main import main
 
 
@@ -44,10 +44,12 @@ def test_check_json(tmp_path: Path):
 
 def test_warnings_alone_exit_zero(tmp_path: Path, capsys):
     model = tmp_path / "w.rscd"
-    model.write_text(robot(
-        'component A { outgoing message a with identifier: "/t", type: none }',
-        'component B { outgoing message b with identifier: "/t", type: none }',
-    ))
+    model.write_text(
+        robot(
+            'component A { outgoing message a with identifier: "/t", type: none }',
+            'component B { outgoing message b with identifier: "/t", type: none }',
+        )
+    )
     assert main(["check", str(model)]) == 0
     out = capsys.readouterr().out
     assert "warning: 'B' and 'A' both publish to topic '/t'" in out and "ok (1 warning)" in out

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 from conftest import robot
-
 from robosc.language.diagnostics import to_json
 
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from conftest import EXAMPLES
-
 from robosc.api import load_model
 from robosc.language import model as m
 
@@ -35,8 +34,13 @@ def test_pick_and_light_uses_every_construct():
     assert kinds == {m.Message, m.Service, m.Action}
     arm = model.component("Arm").automaton
     results = {t.result for t in arm.transitions if isinstance(t, m.ResultTransition)}
-    assert {m.ResultKind.REQUEST, m.ResultKind.RESPONSE, m.ResultKind.FEEDBACK,
-            m.ResultKind.ERROR, m.ResultKind.CANCEL} <= results
+    assert {
+        m.ResultKind.REQUEST,
+        m.ResultKind.RESPONSE,
+        m.ResultKind.FEEDBACK,
+        m.ResultKind.ERROR,
+        m.ResultKind.CANCEL,
+    } <= results
     assert any(t.source is None for t in arm.transitions)  # a global transition
     assert any(isinstance(t, m.TauTransition) and t.guard is not None for t in arm.transitions)
     assert arm.variable("picks").type.is_ranged_integer

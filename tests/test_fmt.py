@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES
 
+from conftest import EXAMPLES
 from robosc.api import check_text, format_text
 from robosc.language.parser import parse_text
 
@@ -57,8 +57,14 @@ def test_messy_layout_is_normalised_with_every_comment_kept():
     assert isinstance(formatted, str)
     assert parse_text(formatted).syntax == parse_text(MESSY).syntax
     assert format_text(formatted) == formatted  # idempotent
-    for comment in ["// leading comment", "/* inline */", "// big ones", "// before the end of behaviour",
-                    "// trailing", "// after everything"]:
+    for comment in [
+        "// leading comment",
+        "/* inline */",
+        "// big ones",
+        "// before the end of behaviour",
+        "// trailing",
+        "// after everything",
+    ]:
         assert formatted.count(comment) == 1, comment
     assert "    provide cmd with 1 + 2 * 3 if C.a // trailing\n" in formatted
     assert "        value.x > 1.0 -> big // big ones\n" in formatted

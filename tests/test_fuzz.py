@@ -5,13 +5,15 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from conftest import EXAMPLES
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from conftest import EXAMPLES
 from robosc.api import check_text, format_text
 
-TOKEN = re.compile(r"\s+|[A-Za-z_^][A-Za-z0-9_]*|\d+\.\d+|\d+|\"[^\"]*\"|'[^']*'|//[^\n]*|:=|->|=>|!=|>=|<=|\.\.|.", re.S)
+TOKEN = re.compile(
+    r"\s+|[A-Za-z_^][A-Za-z0-9_]*|\d+\.\d+|\d+|\"[^\"]*\"|'[^']*'|//[^\n]*|:=|->|=>|!=|>=|<=|\.\.|.", re.S
+)
 SOURCES = {p.name: p.read_text() for p in sorted(EXAMPLES.glob("*.rscd"))}
 
 

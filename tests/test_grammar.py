@@ -31,17 +31,25 @@ def test_robot_and_library_headers():
 
 
 def test_messages_with_and_without_identifier_and_links():
-    comp = only('component C { outgoing message a with identifier: "/a", type: T links i '
-                "incoming message b with type: none }")
+    comp = only(
+        'component C { outgoing message a with identifier: "/a", type: T links i incoming message b with type: none }'
+    )
     a, b = comp.items
     assert (a.direction, a.name.text, a.identifier.value, a.type.name.text, a.links.text) == (
-        "outgoing", "a", "/a", "T", "i")
+        "outgoing",
+        "a",
+        "/a",
+        "T",
+        "i",
+    )
     assert (b.direction, b.identifier, b.type.kind, b.links) == ("incoming", None, "none", None)
 
 
 def test_service_and_action():
-    comp = only("component C { service s with request: integer(0..5), response: string "
-                "action a with identifier: 'x', request: A, response: array(double), feedback: boolean links l }")
+    comp = only(
+        "component C { service s with request: integer(0..5), response: string "
+        "action a with identifier: 'x', request: A, response: array(double), feedback: boolean links l }"
+    )
     service, action = comp.items
     assert isinstance(service, s.ServiceSyntax)
     assert (service.request.low, service.request.high, service.response.kind) == (0, 5, "string")
@@ -104,8 +112,10 @@ def test_datatypes_and_interface():
 
 
 def test_requirements_single_and_set():
-    robot = parse("robot R { requirement a needs true requirement {a, b} needs x "
-                  "requirement y disables a requirement z disables {} }")
+    robot = parse(
+        "robot R { requirement a needs true requirement {a, b} needs x "
+        "requirement y disables a requirement z disables {} }"
+    )
     needs, needs_set, disables, disables_empty = robot.definitions
     assert (needs.kind, needs.events.is_set, [n.text for n in needs.events.names]) == ("needs", False, ["a"])
     assert [n.text for n in needs_set.events.names] == ["a", "b"] and needs_set.events.is_set
@@ -114,8 +124,10 @@ def test_requirements_single_and_set():
 
 
 def test_provide_with_object_value_expression_and_condition():
-    robot = parse("robot R { provide m with { linear: { x: 0.3 }, angular: { z: 1 - 2 } } if A.s "
-                  "provide n with 90 provide o with {} }")
+    robot = parse(
+        "robot R { provide m with { linear: { x: 0.3 }, angular: { z: 1 - 2 } } if A.s "
+        "provide n with 90 provide o with {} }"
+    )
     first, second, third = robot.definitions
     linear = first.data.fields[0]
     assert linear.name.text == "linear" and isinstance(linear.value, s.ObjectValueSyntax)

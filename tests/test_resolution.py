@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 
 from conftest import EXAMPLES, codes, messages, robot
-
 from robosc.api import check_file, check_text
 from robosc.language import model as m
 
@@ -24,12 +23,14 @@ LIBRARY = """library Lib {
 
 
 def test_expressions_hold_objects(check):
-    result = check(robot(
-        "datatype enum E from double to { value > 1.0 -> big default -> small }",
-        "component C { outgoing message m with type: E behaviour { variable e: E = small "
-        "on response from m do e := value initial marked state a {} } }",
-        "requirement act needs S.idle and C.e = big",
-    ))
+    result = check(
+        robot(
+            "datatype enum E from double to { value > 1.0 -> big default -> small }",
+            "component C { outgoing message m with type: E behaviour { variable e: E = small "
+            "on response from m do e := value initial marked state a {} } }",
+            "requirement act needs S.idle and C.e = big",
+        )
+    )
     model = result.model
     assert model is not None, result.render()
     requirement = model.requirements[0]
@@ -39,7 +40,9 @@ def test_expressions_hold_objects(check):
     state_ref, equality = condition.left, condition.right
     assert isinstance(state_ref, m.StateRef)
     assert state_ref.state is model.component("S").automaton.state("idle")
-    assert isinstance(equality.left, m.VariableRef) and equality.left.variable is model.component("C").automaton.variable("e")
+    assert isinstance(equality.left, m.VariableRef) and equality.left.variable is model.component(
+        "C"
+    ).automaton.variable("e")
     enum = next(t for t in model.data_types if t.name == "E")
     assert isinstance(equality.right, m.EnumLiteral) and equality.right.enum is enum
     assert equality.right.value is enum.value("big")
@@ -60,10 +63,12 @@ def test_transitions_hold_states_and_communications(check):
 
 
 def test_value_steps_resolve_to_properties(check):
-    result = check(robot(
-        "datatype object Scan { ranges: array(double) }",
-        "datatype enum Near from Scan to { value.ranges[3] < 0.5 -> near default -> far }",
-    ))
+    result = check(
+        robot(
+            "datatype object Scan { ranges: array(double) }",
+            "datatype enum Near from Scan to { value.ranges[3] < 0.5 -> near default -> far }",
+        )
+    )
     enum = next(t for t in result.model.data_types if t.name == "Near")
     scan = next(t for t in result.model.data_types if t.name == "Scan")
     data = enum.rules[0].condition.left
@@ -120,8 +125,9 @@ def test_missing_library_hint_names_search_path(check):
 
 
 def test_errors_inside_a_library_point_into_the_library(check):
-    broken = LIBRARY.replace("goto", "").replace("initial marked state watching {}",
-                                                 "initial marked state watching { transition goto nowhere }")
+    broken = LIBRARY.replace("goto", "").replace(
+        "initial marked state watching {}", "initial marked state watching { transition goto nowhere }"
+    )
     result = check(robot("component Tank from Lib import Sensor"), lib=broken)
     diagnostic = next(d for d in result.diagnostics if "nowhere" in d.message)
     assert diagnostic.span.path.endswith("lib.rscd") and diagnostic.span.line == 8

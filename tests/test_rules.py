@@ -57,11 +57,17 @@ CASES = {
             "'response' does not fit 'm'",
         ),
         (
-            robot(component("initial marked state a { on feedback from m }", "service m with request: none, response: none")),
+            robot(
+                component(
+                    "initial marked state a { on feedback from m }", "service m with request: none, response: none"
+                )
+            ),
             "a service has",
         ),
         (
-            robot(component("initial marked state a { on cancel to m }", "service m with request: none, response: none")),
+            robot(
+                component("initial marked state a { on cancel to m }", "service m with request: none, response: none")
+            ),
             "a service has",
         ),
     ],
@@ -77,7 +83,10 @@ CASES = {
         ),
     ],
     "rule-7": [
-        (robot(component("initial marked state a { on response from m do S.active := value }")), "cannot assign 'S.active'"),
+        (
+            robot(component("initial marked state a { on response from m do S.active := value }")),
+            "cannot assign 'S.active'",
+        ),
     ],
     "rule-8": [
         (robot(component(OK_STATES), "provide m with true"), "cannot provide data for 'm'"),
@@ -87,7 +96,10 @@ CASES = {
         (robot(component("variable n: integer " + OK_STATES), "requirement act needs C.n = 2"), "needs a range"),
     ],
     "rule-10": [
-        (robot(component("variable d: double initial marked state a { transition if d > 1.0 }")), "only booleans, ranged integers and enums"),
+        (
+            robot(component("variable d: double initial marked state a { transition if d > 1.0 }")),
+            "only booleans, ranged integers and enums",
+        ),
         (
             robot(
                 component("variable t: string " + OK_STATES, "incoming message m with type: integer"),
@@ -121,8 +133,10 @@ CASES = {
     ],
     "rule-13": [
         (
-            robot(component(OK_STATES, 'outgoing message m with identifier: "/topic", type: none'),
-                  "component D { outgoing message n with identifier: \"/topic\", type: none }"),
+            robot(
+                component(OK_STATES, 'outgoing message m with identifier: "/topic", type: none'),
+                'component D { outgoing message n with identifier: "/topic", type: none }',
+            ),
             "both publish to topic '/topic'",
         ),
     ],
@@ -137,7 +151,10 @@ CASES = {
     ],
     "rule-15": [
         (robot(component(OK_STATES, 'outgoing message m with identifier: "/a//b", type: none')), "empty part"),
-        (robot(component(OK_STATES, 'outgoing message m with identifier: "/9lives", type: none')), "start with a letter"),
+        (
+            robot(component(OK_STATES, 'outgoing message m with identifier: "/9lives", type: none')),
+            "start with a letter",
+        ),
         (robot(component(OK_STATES, 'outgoing message m with identifier: "/a/", type: none')), "ends with '/'"),
         (robot(component(OK_STATES, 'outgoing message m with identifier: "/a b", type: none')), "only letters"),
         (robot(component(OK_STATES, 'outgoing message m with identifier: "", type: none')), "empty"),
@@ -176,7 +193,7 @@ VALID = {
     ),
     "rule-13": robot(
         component(OK_STATES, 'outgoing message m with identifier: "/topic", type: none'),
-        "component D { incoming message n with identifier: \"/topic\", type: none }",
+        'component D { incoming message n with identifier: "/topic", type: none }',
     ),
     "rule-14": robot("requirement act needs S.idle and S.active"),
     "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
@@ -215,11 +232,13 @@ def test_shared_topic_is_only_a_warning(check):
 
 
 def test_all_semantic_errors_of_a_file_are_reported_in_one_run(check):
-    result = check(robot(
-        component("variable n: integer initial state a { transition if n > 1 goto zz }"),
-        "requirement nope needs S.idle",
-        "provide sense with true",
-    ))
+    result = check(
+        robot(
+            component("variable n: integer initial state a { transition if n > 1 goto zz }"),
+            "requirement nope needs S.idle",
+            "provide sense with true",
+        )
+    )
     assert {"rule-3", "rule-9", "rule-14", "rule-8"} <= set(codes(result)), result.render()
 
 
@@ -236,8 +255,11 @@ TYPE_ERRORS = [
     ("datatype enum E from double to { value.x > 1.0 -> a default -> b }", "double has no property 'x'"),
     ("datatype enum E from double to { value[0] > 1.0 -> a default -> b }", "cannot index [0] into double"),
     ("datatype enum E from integer to { value -> a default -> b }", "an enum rule must be a boolean expression"),
-    ("datatype enum E from double to { default -> a } datatype enum F from double to { default -> b } "
-     "requirement act needs a = b", "cannot compare E with F"),
+    (
+        "datatype enum E from double to { default -> a } datatype enum F from double to { default -> b } "
+        "requirement act needs a = b",
+        "cannot compare E with F",
+    ),
 ]
 
 
@@ -256,10 +278,14 @@ def test_assignment_value_must_fit_variable(check):
 
 
 def test_arithmetic_result_types(check):
-    result = check(robot(component(
-        "variable i: integer(0..9) variable d: double "
-        "initial marked state a { on response from m do i := 1 + 2 * 3, d := 1 / 2, d := 1 - 0.5, i := 4 / 2 }"
-    )))
+    result = check(
+        robot(
+            component(
+                "variable i: integer(0..9) variable d: double "
+                "initial marked state a { on response from m do i := 1 + 2 * 3, d := 1 / 2, d := 1 - 0.5, i := 4 / 2 }"
+            )
+        )
+    )
     assert messages(result).count("does not fit") == 1  # only 4 / 2 (a double) into an integer
     assert "a value of type double does not fit 'i'" in messages(result)
 

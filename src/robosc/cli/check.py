@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from robosc.api import InputError, check_file
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, CommandExit, include_option, input_problem
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem
 from robosc.language.diagnostics import Diagnostic, to_json
 
 
@@ -42,4 +42,4 @@ def check(files: tuple[str, ...], include: tuple[str, ...], output: str) -> None
                 click.echo(f"{path}: {errors} error{'s' if errors != 1 else ''}", err=True)
     if output == "json":
         click.echo(to_json(diagnostics))
-    raise CommandExit(EXIT_MODEL_ERRORS if failed else EXIT_OK)
+    raise exit_with(EXIT_MODEL_ERRORS if failed else EXIT_OK)

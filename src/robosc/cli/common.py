@@ -24,17 +24,11 @@ def include_option(f: Callable[..., Any]) -> Callable[..., Any]:
     )(f)
 
 
-class CommandExit(click.ClickException):
-    """Ends a command with a given exit code (the message is already printed)."""
-
-    def __init__(self, code: int) -> None:
-        super().__init__("")
-        self.exit_code = code
-
-    def show(self, file: Any = None) -> None:
-        pass
+def exit_with(code: int) -> click.exceptions.Exit:
+    """The exception that ends a command with exit code ``code`` (messages already printed)."""
+    return click.exceptions.Exit(code)
 
 
-def input_problem(message: str) -> CommandExit:
+def input_problem(message: str) -> click.exceptions.Exit:
     click.echo(f"robosc: error: {message}", err=True)
-    return CommandExit(EXIT_USAGE)
+    return exit_with(EXIT_USAGE)

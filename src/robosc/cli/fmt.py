@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from robosc.api import CheckResult, InputError, format_text
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, CommandExit, input_problem
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, input_problem
 from robosc.language.loader import read_source
 
 
@@ -24,15 +24,15 @@ def fmt(file: str, check_only: bool, write: bool) -> None:
     formatted = format_text(source.text, source.path)
     if isinstance(formatted, CheckResult):
         click.echo(formatted.render(), err=True)
-        raise CommandExit(EXIT_MODEL_ERRORS)
+        raise exit_with(EXIT_MODEL_ERRORS)
     if check_only:
         if formatted != source.text:
             click.echo(f"{file}: not in canonical layout (run 'robosc fmt --write {file}')", err=True)
-            raise CommandExit(EXIT_MODEL_ERRORS)
+            raise exit_with(EXIT_MODEL_ERRORS)
         click.echo(f"{file}: ok")
     elif write:
         if formatted != source.text:
             Path(file).write_text(formatted, encoding="utf-8")
     else:
         click.echo(formatted, nl=False)
-    raise CommandExit(EXIT_OK)
+    raise exit_with(EXIT_OK)

@@ -41,7 +41,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     except KeyboardInterrupt:
         return 130
-    except Exception as exc:  # noqa: BLE001 -- the one place that turns a bug into a message
+    except Exception as exc:
         click.echo(f"robosc: internal error: {type(exc).__name__}: {exc}", err=True)
         click.echo("please report this with the model that caused it", err=True)
         return EXIT_INTERNAL

@@ -9,6 +9,7 @@ inside the block.
 from __future__ import annotations
 
 import sys
+from collections.abc import Sequence
 
 from robosc.language import syntax as s
 from robosc.language.keywords import escape_name
@@ -148,7 +149,7 @@ class _Printer:
         self._comments_before(span.end, depth)
         self.lines.append(INDENT * depth + text + self._trailing(span))
 
-    def block(self, header: str, span: Span, depth: int, body: list[tuple[object, str]]) -> None:
+    def block(self, header: str, span: Span, depth: int, body: Sequence[tuple[object, str]]) -> None:
         """``header { body }``; ``body`` pairs each child with its group name (a blank
         line separates children of different groups, and blocks from everything)."""
         self._comments_before(span.start, depth)
@@ -166,6 +167,7 @@ class _Printer:
         self.lines.append(INDENT * depth + "}" + self._trailing(span))
 
     def item(self, node: object, depth: int) -> None:
+        body: list[tuple[object, str]]
         if isinstance(node, s.LocalComponentSyntax):
             body = [(i, "block" if isinstance(i, s.BehaviourSyntax) else "communication") for i in node.items]
             self.block(f"component {name(node.name)}", node.span, depth, body)

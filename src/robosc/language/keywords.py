@@ -1,10 +1,59 @@
 """The reserved words of RoboSC (LANGUAGE.md section 1)."""
 
 KEYWORDS = frozenset(
-    """robot library component from import behaviour outgoing incoming message action service with
-    identifier type request response feedback error cancel links variable on to do goto transition if
-    initial marked state string integer none boolean double array value true false datatype object
-    enum default and or requirement needs disables provide interface use""".split()
+    [
+        "robot",
+        "library",
+        "component",
+        "from",
+        "import",
+        "behaviour",
+        "outgoing",
+        "incoming",
+        "message",
+        "action",
+        "service",
+        "with",
+        "identifier",
+        "type",
+        "request",
+        "response",
+        "feedback",
+        "error",
+        "cancel",
+        "links",
+        "variable",
+        "on",
+        "to",
+        "do",
+        "goto",
+        "transition",
+        "if",
+        "initial",
+        "marked",
+        "state",
+        "string",
+        "integer",
+        "none",
+        "boolean",
+        "double",
+        "array",
+        "value",
+        "true",
+        "false",
+        "datatype",
+        "object",
+        "enum",
+        "default",
+        "and",
+        "or",
+        "requirement",
+        "needs",
+        "disables",
+        "provide",
+        "interface",
+        "use",
+    ]
 )
 
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Union
 
 from robosc.language.source import Span
 
@@ -114,7 +113,7 @@ class ErrorType:
         return "<error>"
 
 
-DataType = Union[BasicType, ArrayType, ObjectType, EnumType, ErrorType]
+DataType = BasicType | ArrayType | ObjectType | EnumType | ErrorType
 
 BOOLEAN = BasicType(BasicKind.BOOLEAN)
 INTEGER = BasicType(BasicKind.INTEGER)
@@ -147,7 +146,7 @@ class IndexStep:
     index: int
 
 
-Step = Union[FieldStep, IndexStep]
+Step = FieldStep | IndexStep
 
 
 @dataclass(frozen=True, eq=False)
@@ -221,7 +220,7 @@ class Invalid:
     type: DataType = ERROR
 
 
-Expr = Union[Literal, EnumLiteral, StateRef, VariableRef, DataRef, Unary, Binary, Invalid]
+Expr = Literal | EnumLiteral | StateRef | VariableRef | DataRef | Unary | Binary | Invalid
 
 
 def walk(expr: Expr) -> Iterator[Expr]:
@@ -298,7 +297,7 @@ class Action:
         return self.identifier if self.identifier is not None else self.name
 
 
-Communication = Union[Message, Service, Action]
+Communication = Message | Service | Action
 
 
 def data_types_of(communication: Communication) -> tuple[DataType, ...]:
@@ -368,7 +367,7 @@ class TauTransition:
     span: Span = field(repr=False)
 
 
-Transition = Union[ResultTransition, TauTransition]
+Transition = ResultTransition | TauTransition
 
 
 @dataclass(frozen=True, eq=False)

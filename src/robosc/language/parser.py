@@ -77,7 +77,7 @@ def _describe_terminal(name: str, parser: Lark) -> str:
 def _describe_expected(expected: set[str], parser: Lark) -> str:
     names = set(expected)
     parts: list[str] = []
-    if _EXPRESSION_STARTS <= names:
+    if names >= _EXPRESSION_STARTS:
         names -= _EXPRESSION_STARTS
         parts.append("an expression")
     if len(_OPERATORS & names) > 3:
@@ -85,7 +85,7 @@ def _describe_expected(expected: set[str], parser: Lark) -> str:
         parts.append("an operator")
     parts += sorted(_describe_terminal(n, parser) for n in names)
     if len(parts) > 8:
-        parts = parts[:8] + ["..."]
+        parts = [*parts[:8], "..."]
     return parts[0] if len(parts) == 1 else "one of " + ", ".join(parts)
 
 
@@ -95,7 +95,7 @@ def _acceptable(exc: UnexpectedInput) -> set[str]:
     if interactive is not None:
         try:
             return set(interactive.accepts())
-        except Exception:  # noqa: BLE001 -- fall back to the parse table's answer
+        except Exception:
             pass
     return set(getattr(exc, "expected", None) or ())
 
@@ -105,7 +105,7 @@ def _point(path: str, text: str, line: int, column: int, pos: int, length: int =
 
 
 def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> Diagnostic:
-    if isinstance(exc, UnexpectedToken) and exc.token.type == "$END" or isinstance(exc, UnexpectedEOF):
+    if (isinstance(exc, UnexpectedToken) and exc.token.type == "$END") or isinstance(exc, UnexpectedEOF):
         lines = text.splitlines() or [""]
         line, column = len(lines), len(lines[-1]) + 1
         expected = _acceptable(exc)
@@ -134,11 +134,12 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
             span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", "syntax", hint
         )
     assert isinstance(exc, UnexpectedCharacters)
-    char = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
-    span = _point(path, text, exc.line, exc.column, exc.pos_in_stream)
+    pos = exc.pos_in_stream or 0
+    char = text[pos] if pos < len(text) else ""
+    span = _point(path, text, exc.line, exc.column, pos)
     if char in "\"'":
         return error(span, "unterminated string", "syntax")
-    if text.startswith("/*", exc.pos_in_stream):
+    if text.startswith("/*", pos):
         return error(span, "unterminated comment (missing '*/')", "syntax")
     shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
     message = f"unexpected character {shown}"

@@ -8,7 +8,6 @@ parses of differently laid-out text compare equal when they say the same thing
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Union
 
 from robosc.language.source import Span
 
@@ -77,7 +76,7 @@ class IndexStep:
     span: Span = _span()
 
 
-Step = Union[MemberStep, IndexStep]
+Step = MemberStep | IndexStep
 
 
 @dataclass(frozen=True)
@@ -110,7 +109,7 @@ class Paren:
     span: Span = _span()
 
 
-Expr = Union[IntLit, DoubleLit, StrLit, BoolLit, Access, Unary, Binary, Paren]
+Expr = IntLit | DoubleLit | StrLit | BoolLit | Access | Unary | Binary | Paren
 
 # ---- data types ----------------------------------------------------------
 
@@ -135,7 +134,7 @@ class NamedTypeSyntax:
     span: Span = _span()
 
 
-TypeSyntax = Union[BasicTypeSyntax, ArrayTypeSyntax, NamedTypeSyntax]
+TypeSyntax = BasicTypeSyntax | ArrayTypeSyntax | NamedTypeSyntax
 
 
 @dataclass(frozen=True)
@@ -209,7 +208,7 @@ class ActionSyntax:
     span: Span = _span()
 
 
-CommunicationSyntax = Union[MessageSyntax, ServiceSyntax, ActionSyntax]
+CommunicationSyntax = MessageSyntax | ServiceSyntax | ActionSyntax
 
 # ---- behaviour -----------------------------------------------------------
 
@@ -246,7 +245,7 @@ class TauTransitionSyntax:
     span: Span = _span()
 
 
-TransitionSyntax = Union[ResultTransitionSyntax, TauTransitionSyntax]
+TransitionSyntax = ResultTransitionSyntax | TauTransitionSyntax
 
 
 @dataclass(frozen=True)
@@ -258,7 +257,7 @@ class StateSyntax:
     span: Span = _span()
 
 
-BehaviourItem = Union[VariableSyntax, StateSyntax, ResultTransitionSyntax, TauTransitionSyntax]
+BehaviourItem = VariableSyntax | StateSyntax | ResultTransitionSyntax | TauTransitionSyntax
 
 
 @dataclass(frozen=True)
@@ -282,7 +281,7 @@ class ImportedComponentSyntax:
     span: Span = _span()
 
 
-ComponentSyntax = Union[LocalComponentSyntax, ImportedComponentSyntax]
+ComponentSyntax = LocalComponentSyntax | ImportedComponentSyntax
 
 # ---- robot-level statements ----------------------------------------------
 
@@ -323,15 +322,15 @@ class ProvideSyntax:
     span: Span = _span()
 
 
-Definition = Union[
-    LocalComponentSyntax,
-    ImportedComponentSyntax,
-    RequirementSyntax,
-    ProvideSyntax,
-    ObjectTypeSyntax,
-    EnumTypeSyntax,
-    InterfaceSyntax,
-]
+Definition = (
+    LocalComponentSyntax
+    | ImportedComponentSyntax
+    | RequirementSyntax
+    | ProvideSyntax
+    | ObjectTypeSyntax
+    | EnumTypeSyntax
+    | InterfaceSyntax
+)
 
 
 @dataclass(frozen=True)

@@ -50,9 +50,7 @@ class SyntaxBuilder(Transformer[Token, s.FileSyntax]):
     def _span(self, meta: Meta) -> Span:
         if getattr(meta, "empty", True):
             return s.NO_SPAN
-        return Span(
-            self.path, meta.line, meta.column, meta.end_line, meta.end_column, meta.start_pos, meta.end_pos
-        )
+        return Span(self.path, meta.line, meta.column, meta.end_line, meta.end_column, meta.start_pos, meta.end_pos)
 
     def token_span(self, token: Token) -> Span:
         return Span(
@@ -105,7 +103,7 @@ class SyntaxBuilder(Transformer[Token, s.FileSyntax]):
         return str(ch[0])
 
     def identifier(self, meta: Meta, ch: list[Token]) -> s.StrLit:
-        return self.string_literal(meta, ch)  # type: ignore[return-value]
+        return self.string_literal(meta, ch)
 
     def links(self, meta: Meta, ch: list[s.Name]) -> s.Name:
         return ch[0]
@@ -157,9 +155,7 @@ class SyntaxBuilder(Transformer[Token, s.FileSyntax]):
                 assignments = part
             else:
                 target = part
-        return s.ResultTransitionSyntax(
-            result, preposition, communication, assignments, target, self._span(meta)
-        )
+        return s.ResultTransitionSyntax(result, preposition, communication, assignments, target, self._span(meta))
 
     def do(self, meta: Meta, ch: list[s.AssignmentSyntax]) -> tuple[s.AssignmentSyntax, ...]:
         return tuple(ch)

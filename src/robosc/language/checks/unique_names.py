@@ -8,7 +8,7 @@ from collections.abc import Iterable, Iterator
 from typing import Protocol
 
 from robosc.language.diagnostics import Diagnostic, error
-from robosc.language.model import Model, ObjectType
+from robosc.language.model import Model, ObjectType, State
 from robosc.language.source import Span
 
 
@@ -42,7 +42,7 @@ def check(model: Model) -> Iterator[Diagnostic]:
     for data_type in model.data_types:
         if isinstance(data_type, ObjectType):
             yield from duplicates("property", data_type.properties, f" of {data_type.name}")
-    states = []
+    states: list[State] = []
     for component in model.components:
         for automaton in component.behaviours:
             yield from duplicates("state", automaton.states, f" of '{component.name}'")

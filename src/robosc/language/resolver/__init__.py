@@ -19,6 +19,7 @@ from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.statements import StatementResolver
 from robosc.language.resolver.tables import ComponentTables
+from robosc.language.source import Span
 
 __all__ = ["FileScope", "LibraryProvider", "LibraryUnit", "Reporter", "ResolveResult", "resolve", "scope_of"]
 
@@ -74,7 +75,7 @@ class _Entry:
     syntax: s.LocalComponentSyntax | None  # None when the import failed
     tables: ComponentTables
     scope: FileScope
-    span: s.Span
+    span: Span
     library: LibraryUnit | None = None
     library_name: str | None = None
     library_component: str | None = None
@@ -133,9 +134,7 @@ class _Resolver:
                 self.scope.interfaces.append(communication.interface)
         for variable in tables.variables.values():
             self.scope.add_imported(variable.type)
-        return _Entry(
-            found, tables, unit.scope, syntax.span, unit, syntax.library.text, syntax.component.text
-        )
+        return _Entry(found, tables, unit.scope, syntax.span, unit, syntax.library.text, syntax.component.text)
 
     # -- lookups -------------------------------------------------------------------
     def _robot_component(self, name: str) -> ComponentTables | str | None:

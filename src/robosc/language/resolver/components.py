@@ -8,7 +8,7 @@ from collections.abc import Callable
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
-from robosc.language.resolver.expressions import ExpressionResolver, ExprContext
+from robosc.language.resolver.expressions import ExprContext, ExpressionResolver
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.tables import ComponentTables

@@ -10,6 +10,7 @@ from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
+from robosc.language.source import Span
 
 # Finds a component by the name used in an expression: its tables, or a
 # message saying why it cannot be used there, or None when no such component exists.
@@ -67,7 +68,7 @@ class ExpressionResolver:
             return m.Binary(syntax.op, left, right, self._checked(result, syntax.span), syntax.span)
         return self.access(syntax, context)
 
-    def _checked(self, result: m.DataType | str, span: s.Span) -> m.DataType:
+    def _checked(self, result: m.DataType | str, span: Span) -> m.DataType:
         if isinstance(result, str):
             self.reporter.error(span, result, "types")
             return m.ERROR
@@ -141,7 +142,7 @@ class ExpressionResolver:
         )
         return m.Invalid(syntax.span)
 
-    def _variable(self, variable: m.Variable, steps: tuple[s.Step, ...], span: s.Span) -> m.Expr:
+    def _variable(self, variable: m.Variable, steps: tuple[s.Step, ...], span: Span) -> m.Expr:
         resolved, data_type = self.steps(variable.type, steps)
         return m.VariableRef(variable, resolved, data_type, span)
 

@@ -7,7 +7,7 @@ from collections.abc import Callable
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language.resolver.components import check_value_fits
-from robosc.language.resolver.expressions import ExpressionResolver, ExprContext
+from robosc.language.resolver.expressions import ExprContext, ExpressionResolver
 from robosc.language.resolver.reporter import Reporter
 
 ROBOT_LEVEL = "'value' means nothing at robot level: name a component's state or variable instead"
@@ -67,9 +67,13 @@ class StatementResolver:
             prop = target.property(field.name.text)
             if prop is None:
                 self.reporter.unknown(
-                    field.name.span, "property", field.name.text, [p.name for p in target.properties], f" in {target.name}"
+                    field.name.span,
+                    "property",
+                    field.name.text,
+                    [p.name for p in target.properties],
+                    f" in {target.name}",
                 )
                 continue
-            value = self._data(field.value, prop.type, context, f"property '{prop.name}'")
-            fields.append(m.FieldValue(prop, value, field.span))
+            data = self._data(field.value, prop.type, context, f"property '{prop.name}'")
+            fields.append(m.FieldValue(prop, data, field.span))
         return m.ObjectValue(target, tuple(fields), syntax.span)
