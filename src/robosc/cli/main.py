@@ -30,7 +30,7 @@ cli.add_command(fmt)
 
 def main(argv: Sequence[str] | None = None) -> int:
     try:
-        cli.main(args=list(argv) if argv is not None else None, prog_name="robosc", standalone_mode=False)
+        code = cli.main(args=list(argv) if argv is not None else None, prog_name="robosc", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
     except click.ClickException as exc:
@@ -45,7 +45,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         click.echo(f"robosc: internal error: {type(exc).__name__}: {exc}", err=True)
         click.echo("please report this with the model that caused it", err=True)
         return EXIT_INTERNAL
-    return 0
+    return code if isinstance(code, int) else 0
 
 
 def run() -> None:
