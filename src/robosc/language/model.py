@@ -479,6 +479,15 @@ class Model:
         return tuple(t for t in self.data_types if isinstance(t, EnumType))
 
 
+def result_transitions(model: Model) -> Iterator[tuple[Component, ResultTransition]]:
+    """Every ``on RESULT ...`` transition with the component it belongs to."""
+    for component in model.components:
+        for automaton in component.behaviours:
+            for transition in automaton.transitions:
+                if isinstance(transition, ResultTransition):
+                    yield component, transition
+
+
 def expressions_of(model: Model) -> Iterator[tuple[str, Expr]]:
     """Every top-level expression with the role it plays: guard, requirement, provide-condition, ..."""
     for component in model.components:

@@ -5,21 +5,17 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from robosc.language.diagnostics import Diagnostic, error
-from robosc.language.model import Model, ResultTransition
+from robosc.language.model import Model, result_transitions
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    for component in model.components:
-        for automaton in component.behaviours:
-            for transition in automaton.transitions:
-                if not isinstance(transition, ResultTransition):
-                    continue
-                for assignment in transition.assignments:
-                    variable = assignment.variable
-                    if variable.owner != component.name and variable.name != "<invalid>":
-                        yield error(
-                            assignment.span,
-                            f"'{component.name}' cannot assign '{variable.owner}.{variable.name}': "
-                            "a transition assigns only its own component's variables",
-                            "rule-7",
-                        )
+    for component, transition in result_transitions(model):
+        for assignment in transition.assignments:
+            variable = assignment.variable
+            if variable.owner != component.name and variable.name != "<invalid>":
+                yield error(
+                    assignment.span,
+                    f"'{component.name}' cannot assign '{variable.owner}.{variable.name}': "
+                    "a transition assigns only its own component's variables",
+                    "rule-7",
+                )

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from robosc.language.diagnostics import Diagnostic, error
-from robosc.language.model import Action, Communication, Direction, Message, Model, ResultKind, ResultTransition
+from robosc.language.model import Action, Communication, Direction, Message, Model, ResultKind, result_transitions
 
 R = ResultKind
 
@@ -21,15 +21,11 @@ def allowed(communication: Communication) -> tuple[frozenset[ResultKind], str]:
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    for component in model.components:
-        for automaton in component.behaviours:
-            for transition in automaton.transitions:
-                if not isinstance(transition, ResultTransition):
-                    continue
-                kinds, explanation = allowed(transition.communication)
-                if transition.result not in kinds:
-                    yield error(
-                        transition.span,
-                        f"'{transition.result.value}' does not fit '{transition.communication.name}': {explanation}",
-                        "rule-5",
-                    )
+    for _, transition in result_transitions(model):
+        kinds, explanation = allowed(transition.communication)
+        if transition.result not in kinds:
+            yield error(
+                transition.span,
+                f"'{transition.result.value}' does not fit '{transition.communication.name}': {explanation}",
+                "rule-5",
+            )
