@@ -1,0 +1,69 @@
+"""Model expressions back to RoboSC text, with the parentheses the precedence needs.
+
+Used for everything robosc shows about a checked model: requirement texts,
+synthesized guards, explanations.
+"""
+
+from __future__ import annotations
+
+from robosc.language import model as m
+from robosc.language.keywords import escape_name
+
+# LANGUAGE.md section 2, loosest first.
+LEVEL = {op: i for i, op in enumerate(["or", "and", "=", "!=", ">", ">=", "<", "<=", "=>", "+", "-", "*", "/"], 1)}
+UNARY_LEVEL = {"!": 14, "-": 15}
+ASSOCIATIVE = {"or", "and", "+", "*"}
+
+
+def _level(e: m.Expr) -> int:
+    if isinstance(e, m.Binary):
+        return LEVEL[e.op]
+    if isinstance(e, m.Unary):
+        return UNARY_LEVEL[e.op]
+    return 99
+
+
+def _child(e: m.Expr, parent: str, right: bool) -> str:
+    text = render(e)
+    level, parent_level = _level(e), LEVEL[parent]
+    needs = level < parent_level or (
+        right and level == parent_level and not (isinstance(e, m.Binary) and e.op == parent and parent in ASSOCIATIVE)
+    )
+    # "a and b or c" is legal but easy to misread: show and/or groups explicitly.
+    mixed_logic = isinstance(e, m.Binary) and e.op in ("and", "or") and parent in ("and", "or") and e.op != parent
+    return f"({text})" if needs or mixed_logic else text
+
+
+def steps(path: tuple[m.Step, ...]) -> str:
+    return "".join(f"[{s.index}]" if isinstance(s, m.IndexStep) else f".{escape_name(s.property.name)}" for s in path)
+
+
+def literal(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value) if "." in repr(value) else f"{value:.1f}"
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+    if isinstance(value, m.EnumValue):
+        return escape_name(value.name)
+    return str(value)
+
+
+def render(e: m.Expr) -> str:
+    if isinstance(e, m.Binary):
+        return f"{_child(e.left, e.op, False)} {e.op} {_child(e.right, e.op, True)}"
+    if isinstance(e, m.Unary):
+        inner = render(e.operand)
+        return f"{e.op}({inner})" if _level(e.operand) < UNARY_LEVEL[e.op] else f"{e.op}{inner}"
+    if isinstance(e, m.Literal):
+        return literal(e.value)
+    if isinstance(e, m.EnumLiteral):
+        return escape_name(e.value.name)
+    if isinstance(e, m.StateRef):
+        return f"{escape_name(e.state.owner)}.{escape_name(e.state.name)}"
+    if isinstance(e, m.VariableRef):
+        return f"{escape_name(e.variable.owner)}.{escape_name(e.variable.name)}{steps(e.steps)}"
+    if isinstance(e, m.DataRef):
+        return "value" + steps(e.steps)
+    return "<invalid>"

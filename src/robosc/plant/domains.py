@@ -1,0 +1,34 @@
+"""The finite domains of the variables that take part in synthesis, and their start values."""
+
+from __future__ import annotations
+
+from robosc.language import model as m
+
+
+def domain(variable: m.Variable) -> tuple[object, ...]:
+    t = variable.type
+    if isinstance(t, m.EnumType):
+        return tuple(t.values)
+    if isinstance(t, m.BasicType) and t.kind is m.BasicKind.BOOLEAN:
+        return (False, True)
+    if isinstance(t, m.BasicType) and t.is_ranged_integer:
+        assert t.low is not None and t.high is not None
+        return tuple(range(t.low, t.high + 1))
+    raise ValueError(f"variable '{variable.name}' of type {t} has no finite domain")
+
+
+def initial_value(variable: m.Variable) -> object:
+    """The given initial value, or the type's default: false; 0, or the range's low
+    end when 0 is outside it; the enum's first value."""
+    values = domain(variable)
+    if variable.initial is not None:
+        e = variable.initial
+        if isinstance(e, m.EnumLiteral):
+            return e.value
+        if isinstance(e, m.Literal):
+            return e.value
+        if isinstance(e, m.Unary) and isinstance(e.operand, m.Literal) and isinstance(e.operand.value, int):
+            return -e.operand.value
+    if isinstance(variable.type, m.BasicType) and variable.type.kind is m.BasicKind.INTEGER:
+        return 0 if 0 in values else values[0]
+    return values[0]

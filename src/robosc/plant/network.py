@@ -1,0 +1,128 @@
+"""The automata network that synthesis works on.
+
+Locations are :class:`robosc.language.model.State` objects: a component's own
+states, and states made for the communication and data plants (``owner`` is
+the plant's name). So every guard -- written by the user, made by the plant
+construction, or added by synthesis -- is an ordinary model expression.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from enum import Enum
+
+from robosc.language import model as m
+
+
+class EventKind(str, Enum):
+    MESSAGE = "message"  # the one event of a message
+    TRIGGER = "trigger"  # c_trigger: send a service request / start an action
+    RESPONSE = "response"  # u_response
+    ERROR = "error"  # u_error
+    FEEDBACK = "feedback"  # u_feedback
+    RESET = "reset"  # c_reset: back to idle after a response or error
+    CANCEL = "cancel"  # c_cancel
+    TAU = "tau"  # a component's own `transition`
+    PROVIDE = "provide"  # a data plant choosing the data to send
+
+
+@dataclass(frozen=True, eq=False)
+class Event:
+    name: str
+    controllable: bool
+    kind: EventKind
+    communication: m.Communication | None = None
+    transition: m.TauTransition | None = None  # for TAU events
+    provide: m.Provide | None = None  # for PROVIDE events (None: the "no data" choice)
+
+    def __repr__(self) -> str:
+        return f"Event({self.name})"
+
+
+@dataclass(frozen=True, eq=False)
+class Update:
+    """``variable := value``; ``value`` None means any value of the variable's domain
+    (the update depends on data received from the middleware)."""
+
+    variable: m.Variable
+    value: m.Expr | None
+
+
+@dataclass(frozen=True, eq=False)
+class Edge:
+    source: m.State
+    target: m.State
+    event: Event
+    guard: m.Expr | None = None
+    updates: tuple[Update, ...] = ()
+
+
+class AutomatonKind(str, Enum):
+    COMPONENT = "component"
+    MESSAGE = "message"
+    SERVICE = "service"
+    ACTION = "action"
+    DATA = "data"
+
+
+@dataclass(frozen=True, eq=False)
+class Automaton:
+    name: str
+    kind: AutomatonKind
+    locations: tuple[m.State, ...]
+    initial: m.State
+    edges: tuple[Edge, ...]
+    alphabet: frozenset[Event]
+    component: m.Component | None = None
+
+    @property
+    def marked(self) -> tuple[m.State, ...]:
+        return tuple(loc for loc in self.locations if loc.marked)
+
+
+@dataclass(frozen=True, eq=False)
+class Requirement:
+    """A state-event exclusion: ``event`` may occur only where ``condition`` holds."""
+
+    event: Event
+    condition: m.Expr
+    description: str
+    origin: m.Requirement | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class Network:
+    model: m.Model
+    events: tuple[Event, ...]
+    automata: tuple[Automaton, ...]
+    variables: tuple[m.Variable, ...]
+    domains: dict[m.Variable, tuple[object, ...]] = field(repr=False)
+    initial_values: dict[m.Variable, object] = field(repr=False)
+    requirements: tuple[Requirement, ...] = ()
+
+    @property
+    def controllable(self) -> tuple[Event, ...]:
+        return tuple(e for e in self.events if e.controllable)
+
+    @property
+    def uncontrollable(self) -> tuple[Event, ...]:
+        return tuple(e for e in self.events if not e.controllable)
+
+    def automaton_of(self, location: m.State) -> Automaton:
+        for automaton in self.automata:
+            if location in automaton.locations:
+                return automaton
+        raise KeyError(location.name)
+
+    def owner_of(self, variable: m.Variable) -> Automaton:
+        for automaton in self.automata:
+            if automaton.component is not None and automaton.component.name == variable.owner:
+                return automaton
+        raise KeyError(variable.name)
+
+    def requirements_on(self, event: Event) -> Iterator[Requirement]:
+        return (r for r in self.requirements if r.event is event)
+
+    def event(self, name: str) -> Event:
+        return next(e for e in self.events if e.name == name)

@@ -1,0 +1,222 @@
+"""Binary encoding of a network's state for BDDs (``dd.cudd``).
+
+Every automaton with more than one location and every variable gets
+``ceil(log2(n))`` bits for its ``n`` locations or values; each bit ``b`` has a
+primed twin ``b'`` (the next state) right after it in the variable order.
+Codes past ``n - 1`` are invalid and excluded by :meth:`Encoding.valid`.
+
+Expressions become BDDs: a boolean expression directly, other expressions as
+a map from each value they can take to the BDD of where they take it.
+"""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from dd import cudd
+
+from robosc.language import model as m
+from robosc.plant.network import Automaton, Network
+
+BDD = Any  # dd.cudd.Function
+Item = Automaton | m.Variable
+
+_COMPARE: dict[str, Callable[[Any, Any], bool]] = {
+    "=": operator.eq,
+    "!=": operator.ne,
+    "<": operator.lt,
+    "<=": operator.le,
+    ">": operator.gt,
+    ">=": operator.ge,
+}
+_ARITHMETIC: dict[str, Callable[[Any, Any], Any]] = {
+    "+": operator.add,
+    "-": operator.sub,
+    "*": operator.mul,
+    "/": operator.truediv,
+}
+
+
+@dataclass(frozen=True)
+class Field:
+    """The bits of one automaton's location or one variable's value."""
+
+    item: Item
+    name: str  # a readable, unique prefix for the bits
+    values: tuple[Any, ...]  # locations or domain values, in code order
+    bits: tuple[str, ...]
+
+    @property
+    def primed(self) -> tuple[str, ...]:
+        return tuple(b + "'" for b in self.bits)
+
+
+class Encoding:
+    def __init__(self, network: Network) -> None:
+        self.network = network
+        self.bdd = cudd.BDD()
+        self.fields: dict[int, Field] = {}
+        order: list[str] = []
+        items: list[tuple[Item, str, Sequence[Any]]] = [(a, a.name, a.locations) for a in network.automata]
+        items += [(v, f"{v.owner}.{v.name}", network.domains[v]) for v in network.variables]
+        for index, (item, name, values) in enumerate(items):
+            width = max(0, (len(values) - 1).bit_length())
+            bits = tuple(f"b{index}_{k}" for k in range(width))
+            self.fields[id(item)] = Field(item, name, tuple(values), bits)
+            for bit in bits:
+                order += [bit, bit + "'"]
+        if order:
+            self.bdd.declare(*order)
+        self.x_vars = [b for f in self.fields.values() for b in f.bits]
+        self.xp_vars = [b + "'" for b in self.x_vars]
+        self.to_primed = dict(zip(self.x_vars, self.xp_vars, strict=True))
+        self.from_primed = dict(zip(self.xp_vars, self.x_vars, strict=True))
+        self.true = self.bdd.true
+        self.false = self.bdd.false
+        self._valid = {False: self._valid_codes(False), True: self._valid_codes(True)}
+
+    # -- fields and codes -----------------------------------------------------------
+    def field(self, item: Item) -> Field:
+        return self.fields[id(item)]
+
+    def code(self, field: Field, index: int, primed: bool = False) -> BDD:
+        """The BDD of ``field`` holding its ``index``-th value."""
+        names = field.primed if primed else field.bits
+        result = self.true
+        for k, bit in enumerate(names):
+            var = self.bdd.var(bit)
+            result &= var if (index >> k) & 1 else ~var
+        return result
+
+    def assignment(self, field: Field, index: int, primed: bool = False) -> dict[str, bool]:
+        names = field.primed if primed else field.bits
+        return {bit: bool((index >> k) & 1) for k, bit in enumerate(names)}
+
+    def at(self, location: m.State, primed: bool = False) -> BDD:
+        field = self.field(self.network.automaton_of(location))
+        return self.code(field, field.values.index(location), primed)
+
+    def holds(self, variable: m.Variable, value: Any, primed: bool = False) -> BDD:
+        field = self.field(variable)
+        return self.code(field, field.values.index(value), primed)
+
+    def _valid_codes(self, primed: bool) -> BDD:
+        result = self.true
+        for field in self.fields.values():
+            if len(field.values) < 2 ** len(field.bits):
+                allowed = self.false
+                for index in range(len(field.values)):
+                    allowed |= self.code(field, index, primed)
+                result &= allowed
+        return result
+
+    def valid(self, primed: bool = False) -> BDD:
+        return self._valid[primed]
+
+    def unchanged(self, field: Field) -> BDD:
+        result = self.true
+        for bit in field.bits:
+            result &= self.bdd.var(bit).equiv(self.bdd.var(bit + "'"))
+        return result
+
+    # -- state sets ------------------------------------------------------------------------
+    def prime(self, u: BDD) -> BDD:
+        return self.bdd.let(self.to_primed, u) if self.to_primed else u
+
+    def unprime(self, u: BDD) -> BDD:
+        return self.bdd.let(self.from_primed, u) if self.from_primed else u
+
+    def pre(self, relation: BDD, target: BDD) -> BDD:
+        """States with a transition in ``relation`` into ``target``."""
+        return cudd.and_exists(relation, self.prime(target), self.xp_vars) if self.xp_vars else relation & target
+
+    def post(self, relation: BDD, source: BDD) -> BDD:
+        """States reached by a transition in ``relation`` from ``source``."""
+        return self.unprime(cudd.and_exists(relation, source, self.x_vars)) if self.x_vars else relation & source
+
+    def count(self, states: BDD) -> int:
+        return int(self.bdd.count(states, nvars=len(self.x_vars))) if self.x_vars else int(states == self.true)
+
+    def state(self, locations: dict[Automaton, m.State], values: dict[m.Variable, Any]) -> BDD:
+        """The BDD of one concrete state."""
+        result = self.true
+        for automaton, location in locations.items():
+            result &= self.at(location)
+        for variable, value in values.items():
+            result &= self.holds(variable, value)
+        return result
+
+    def decode(self, assignment: dict[str, bool]) -> dict[int, Any]:
+        """Field values (by item id) of a satisfying assignment over the unprimed bits."""
+        result = {}
+        for key, field in self.fields.items():
+            index = sum(1 << k for k, bit in enumerate(field.bits) if assignment.get(bit, False))
+            result[key] = field.values[index] if index < len(field.values) else None
+        return result
+
+    # -- expressions -------------------------------------------------------------------------
+    def boolean(self, e: m.Expr) -> BDD:
+        """The states where a boolean expression holds."""
+        if isinstance(e, m.Literal) and isinstance(e.value, bool):
+            return self.true if e.value else self.false
+        if isinstance(e, m.StateRef):
+            return self.at(e.state)
+        if isinstance(e, m.Unary) and e.op == "!":
+            return ~self.boolean(e.operand)
+        if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
+            left, right = self.boolean(e.left), self.boolean(e.right)
+            if e.op == "and":
+                return left & right
+            return left | right if e.op == "or" else (~left) | right
+        if isinstance(e, m.Binary) and e.op in _COMPARE:
+            if e.op in ("=", "!=") and _is_boolean(e.left):
+                same = self.boolean(e.left).equiv(self.boolean(e.right))
+                return same if e.op == "=" else ~same
+            compare = _COMPARE[e.op]
+            result = self.false
+            for a, when_a in self.values(e.left).items():
+                for b, when_b in self.values(e.right).items():
+                    if compare(a, b):
+                        result |= when_a & when_b
+            return result
+        values = self.values(e)
+        return values.get(True, self.false)
+
+    def values(self, e: m.Expr) -> dict[Any, BDD]:
+        """For a non-boolean expression: each value it can take, and where it takes it."""
+        if isinstance(e, m.Literal):
+            return {e.value: self.true}
+        if isinstance(e, m.EnumLiteral):
+            return {e.value: self.true}
+        if isinstance(e, m.VariableRef):
+            field = self.field(e.variable)
+            return {value: self.code(field, i) for i, value in enumerate(field.values)}
+        if isinstance(e, m.Unary) and e.op == "-":
+            return _merge((-v, u) for v, u in self.values(e.operand).items())
+        if isinstance(e, m.Binary) and e.op in _ARITHMETIC:
+            apply = _ARITHMETIC[e.op]
+            pairs = []
+            for a, when_a in self.values(e.left).items():
+                for b, when_b in self.values(e.right).items():
+                    if e.op == "/" and b == 0:
+                        continue  # division by zero: no value (the edge cannot be taken)
+                    pairs.append((apply(a, b), when_a & when_b))
+            return _merge(pairs)
+        if _is_boolean(e):
+            holds = self.boolean(e)
+            return {True: holds, False: ~holds}
+        raise ValueError(f"cannot encode expression of type {e.type}")
+
+
+def _is_boolean(e: m.Expr) -> bool:
+    return isinstance(e.type, m.BasicType) and e.type.kind is m.BasicKind.BOOLEAN
+
+
+def _merge(pairs: Any) -> dict[Any, BDD]:
+    result: dict[Any, BDD] = {}
+    for value, where in pairs:
+        result[value] = result[value] | where if value in result else where
+    return result

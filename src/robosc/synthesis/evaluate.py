@@ -1,0 +1,53 @@
+"""Evaluating model expressions in a concrete network state (explicit synthesis, simulator)."""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from robosc.language import model as m
+
+_BINARY: dict[str, Callable[[Any, Any], Any]] = {
+    "=": operator.eq,
+    "!=": operator.ne,
+    "<": operator.lt,
+    "<=": operator.le,
+    ">": operator.gt,
+    ">=": operator.ge,
+    "+": operator.add,
+    "-": operator.sub,
+    "*": operator.mul,
+}
+
+
+class Undefined(Exception):
+    """The expression has no value here (division by zero)."""
+
+
+def evaluate(e: m.Expr, locations: frozenset[m.State] | set[m.State], values: Mapping[m.Variable, Any]) -> Any:
+    if isinstance(e, m.Literal):
+        return e.value
+    if isinstance(e, m.EnumLiteral):
+        return e.value
+    if isinstance(e, m.StateRef):
+        return e.state in locations
+    if isinstance(e, m.VariableRef):
+        return values[e.variable]
+    if isinstance(e, m.Unary):
+        inner = evaluate(e.operand, locations, values)
+        return (not inner) if e.op == "!" else -inner
+    if isinstance(e, m.Binary):
+        if e.op == "and":
+            return evaluate(e.left, locations, values) and evaluate(e.right, locations, values)
+        if e.op == "or":
+            return evaluate(e.left, locations, values) or evaluate(e.right, locations, values)
+        if e.op == "=>":
+            return (not evaluate(e.left, locations, values)) or evaluate(e.right, locations, values)
+        left, right = evaluate(e.left, locations, values), evaluate(e.right, locations, values)
+        if e.op == "/":
+            if right == 0:
+                raise Undefined("division by zero")
+            return left / right
+        return _BINARY[e.op](left, right)
+    raise Undefined(f"cannot evaluate {type(e).__name__}")

@@ -1,0 +1,92 @@
+"""Why synthesis failed: the requirement or the blocking situation behind it, and a
+shortest sequence of uncontrollable events from the initial state that leads there."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from robosc.language.render import render
+from robosc.plant.network import AutomatonKind, Event
+from robosc.synthesis.encoding import BDD
+from robosc.synthesis.result import Explanation, Step
+from robosc.synthesis.state import NetworkState, describe
+
+
+def _pick(fp: Any, states: BDD) -> NetworkState:
+    enc = fp.enc
+    assignment = enc.bdd.pick(states, care_vars=enc.x_vars) or {}
+    decoded = enc.decode(assignment)
+    network = enc.network
+    return NetworkState(
+        tuple(decoded[id(a)] for a in network.automata), tuple(decoded[id(v)] for v in network.variables)
+    )
+
+
+def explain(fp: Any) -> Explanation:
+    enc = fp.enc
+    network = enc.network
+    uncontrollable = network.uncontrollable
+    blocked_at = enc.false
+    for event in uncontrollable:
+        blocked_at |= enc.pre(fp.relation[event], fp.bad)
+    sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
+    layers = [fp.initial]
+    seen = fp.initial
+    while (layers[-1] & sources) == enc.false:
+        image = enc.false
+        for event in uncontrollable:
+            image |= enc.post(fp.relation[event], layers[-1])
+        frontier = image & fp.bad & ~seen
+        if frontier == enc.false:
+            break
+        layers.append(frontier)
+        seen |= frontier
+    target = layers[-1] & sources
+    if target == enc.false:  # cannot happen when the initial state is bad; be safe anyway
+        target = layers[-1]
+    # walk back to the initial state, one uncontrollable event per layer
+    here = _pick(fp, target)
+    here_bdd = fp.state(here)
+    steps: list[Step] = []
+    for layer in reversed(layers[:-1]):
+        for event in uncontrollable:
+            before = layer & enc.pre(fp.relation[event], here_bdd)
+            if before != enc.false:
+                steps.append(Step(event, describe(network, here)))
+                here = _pick(fp, before)
+                here_bdd = fp.state(here)
+                break
+    steps.reverse()
+    last = _pick(fp, target)
+    return Explanation(_reason(fp, last), describe(network, _pick(fp, fp.initial)), tuple(steps))
+
+
+def _reason(fp: Any, state: NetworkState) -> str:
+    enc = fp.enc
+    network = enc.network
+    where = fp.state(state)
+    for event in network.uncontrollable:
+        if (where & fp.enabled[event]) == enc.false:
+            continue
+        for requirement in network.requirements_on(event):
+            if (where & ~enc.boolean(requirement.condition)) != enc.false:
+                return (
+                    f"in state [{describe(network, state)}] the uncontrollable event '{_name(event)}' can happen, "
+                    f"but {requirement.description} does not hold there ({render(requirement.condition)} is false); "
+                    "a supervisor cannot prevent uncontrollable events, so it must keep the system out of this state, "
+                    "and it cannot"
+                )
+    unmarked = [
+        f"{a.name}.{loc.name}"
+        for a, loc in zip(network.automata, state.locations, strict=True)
+        if not loc.marked and a.kind is not AutomatonKind.DATA
+    ]
+    stuck = f" (not in a marked state: {', '.join(unmarked)})" if unmarked else ""
+    return (
+        f"the system would block: from state [{describe(network, state)}]{stuck} no sequence of events that the "
+        "requirements allow leads to a state where every component is in a marked state"
+    )
+
+
+def _name(event: Event) -> str:
+    return event.name

@@ -1,0 +1,173 @@
+"""Explicit-state synthesis: enumerate the reachable states and compute the same fixed
+point as :mod:`.symbolic` on sets of states. Independent of the BDD code, for
+cross-checking it on small models."""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections import deque
+from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from robosc.plant.network import Edge, Event, Network
+from robosc.synthesis.evaluate import Undefined, evaluate
+from robosc.synthesis.result import SynthesisResult
+from robosc.synthesis.state import NetworkState
+
+
+class TooManyStates(Exception):
+    pass
+
+
+def initial_state(network: Network) -> NetworkState:
+    return NetworkState(
+        tuple(a.initial for a in network.automata), tuple(network.initial_values[v] for v in network.variables)
+    )
+
+
+def _holds(edge_guard: Any, locations: set[Any], values: dict[Any, Any]) -> bool:
+    if edge_guard is None:
+        return True
+    try:
+        return bool(evaluate(edge_guard, locations, values))
+    except Undefined:
+        return False
+
+
+def successors(network: Network, state: NetworkState, event: Event) -> Iterator[NetworkState]:
+    """Every state ``event`` can lead to from ``state`` (none when it is disabled)."""
+    locations = set(state.locations)
+    values = dict(zip(network.variables, state.values, strict=True))
+    choices: list[list[tuple[int, Edge]]] = []
+    for index, automaton in enumerate(network.automata):
+        if event not in automaton.alphabet:
+            continue
+        here = state.locations[index]
+        enabled = [
+            (index, e)
+            for e in automaton.edges
+            if e.event is event and e.source is here and _holds(e.guard, locations, values)
+        ]
+        if not enabled:
+            return
+        choices.append(enabled)
+    for combination in itertools.product(*choices):
+        new_locations = list(state.locations)
+        options: list[list[Any]] = [[v] for v in state.values]
+        possible = True
+        for index, edge in combination:
+            new_locations[index] = edge.target
+            for update in edge.updates:
+                position = network.variables.index(update.variable)
+                domain = network.domains[update.variable]
+                if update.value is None:
+                    options[position] = list(domain)
+                    continue
+                try:
+                    value = evaluate(update.value, locations, values)
+                except Undefined:
+                    possible = False
+                    break
+                if value not in domain:
+                    possible = False  # outside the variable's range: no such transition
+                    break
+                options[position] = [domain[domain.index(value)]]
+        if possible:
+            for new_values in itertools.product(*options):
+                yield NetworkState(tuple(new_locations), tuple(new_values))
+
+
+@dataclass
+class ExplicitSupervisor:
+    network: Network
+    states: list[NetworkState]
+    transitions: dict[NetworkState, list[tuple[Event, NetworkState]]]
+    required_ok: dict[tuple[NetworkState, Event], bool]
+    bad: set[NetworkState]
+
+    def allows(self, event: Event, state: NetworkState) -> bool:
+        if state in self.bad or state not in self.transitions:
+            return False
+        targets = [t for e, t in self.transitions[state] if e is event]
+        if not targets:
+            return False
+        if not event.controllable:
+            return True
+        return self.required_ok[(state, event)] and all(t not in self.bad for t in targets)
+
+
+def synthesize_explicit(network: Network, max_states: int = 200_000) -> SynthesisResult:
+    start = time.perf_counter()
+    init = initial_state(network)
+    transitions: dict[NetworkState, list[tuple[Event, NetworkState]]] = {}
+    queue = deque([init])
+    transitions[init] = []
+    order = [init]
+    while queue:
+        state = queue.popleft()
+        out = transitions[state]
+        for event in network.events:
+            for target in successors(network, state, event):
+                out.append((event, target))
+                if target not in transitions:
+                    if len(transitions) >= max_states:
+                        raise TooManyStates(f"more than {max_states} states")
+                    transitions[target] = []
+                    order.append(target)
+                    queue.append(target)
+    required_ok: dict[tuple[NetworkState, Event], bool] = {}
+    for state in order:
+        locations = set(state.locations)
+        values = dict(zip(network.variables, state.values, strict=True))
+        for event in {e for e, _ in transitions[state]}:
+            required_ok[(state, event)] = all(
+                _holds(r.condition, locations, values) for r in network.requirements_on(event)
+            )
+    predecessors: dict[NetworkState, list[tuple[Event, NetworkState]]] = {s: [] for s in order}
+    for state in order:
+        for event, target in transitions[state]:
+            predecessors[target].append((event, state))
+
+    bad = {s for s in order if any(not e.controllable and not required_ok[(s, e)] for e, _ in transitions[s])}
+    while True:
+        stack = list(bad)
+        while stack:  # controllability: uncontrollable predecessors of bad states are bad
+            state = stack.pop()
+            for event, source in predecessors[state]:
+                if not event.controllable and source not in bad:
+                    bad.add(source)
+                    stack.append(source)
+        good = {s for s in order if s not in bad and all(loc.marked for loc in s.locations)}
+        stack = list(good)
+        while stack:  # nonblocking: who can reach a marked state through good states
+            state = stack.pop()
+            for event, source in predecessors[state]:
+                if source not in bad and source not in good and required_ok[(source, event)]:
+                    good.add(source)
+                    stack.append(source)
+        new_bad = {s for s in order if s not in good}
+        if new_bad == bad:
+            break
+        bad = new_bad
+
+    supervisor = ExplicitSupervisor(network, order, transitions, required_ok, bad)
+    reachable: set[NetworkState] = set()
+    if init not in bad:
+        reachable = {init}
+        queue = deque([init])
+        while queue:
+            state = queue.popleft()
+            for event, target in transitions[state]:
+                if target not in reachable and supervisor.allows(event, state):
+                    reachable.add(target)
+                    queue.append(target)
+    return SynthesisResult(
+        network,
+        "explicit",
+        init not in bad,
+        reachable_states=len(reachable),
+        seconds=time.perf_counter() - start,
+        details={"supervisor": supervisor, "plant_states": len(order)},
+    )

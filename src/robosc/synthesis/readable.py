@@ -1,0 +1,104 @@
+"""A BDD over the network state back to an expression over the model's own names.
+
+Decomposes on one automaton or variable at a time (model order, components
+first), groups the values that lead to the same remainder, and writes each group
+as briefly as it can: ``Platform.ready``, ``Distance.front = no_wall_front``,
+``Arm.picks < 3``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from robosc.language import model as m
+from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
+from robosc.plant.network import Automaton, AutomatonKind
+from robosc.synthesis.encoding import BDD, Encoding, Field
+
+
+def _order(enc: Encoding) -> list[Field]:
+    network = enc.network
+    components = [a for a in network.automata if a.kind is AutomatonKind.COMPONENT]
+    plants = [a for a in network.automata if a.kind is not AutomatonKind.COMPONENT]
+    items: list[Any] = [*components, *network.variables, *plants]
+    return [enc.field(i) for i in items if enc.field(i).bits]
+
+
+def _ref(field: Field) -> m.VariableRef:
+    variable = field.item
+    assert isinstance(variable, m.Variable)
+    return m.VariableRef(variable, (), variable.type, NO_SPAN)
+
+
+def _equals(field: Field, value: Any, op: str = "=") -> m.Expr:
+    ref = _ref(field)
+    if isinstance(value, bool):
+        return ref if value == (op == "=") else negate(ref)
+    if isinstance(value, m.EnumValue):
+        assert isinstance(field.item, m.Variable) and isinstance(field.item.type, m.EnumType)
+        constant: m.Expr = m.EnumLiteral(field.item.type, value, NO_SPAN)
+    else:
+        constant = m.Literal(value, m.INTEGER, NO_SPAN)
+    return m.Binary(op, ref, constant, m.BOOLEAN, NO_SPAN)
+
+
+def _compare(field: Field, op: str, value: int) -> m.Expr:
+    return m.Binary(op, _ref(field), m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+
+
+def membership(field: Field, chosen: list[Any]) -> m.Expr | None:
+    """``field`` has one of the ``chosen`` values; None when that is every value."""
+    others = [v for v in field.values if v not in chosen]
+    if not others:
+        return None
+    if isinstance(field.item, Automaton):
+        if len(others) < len(chosen):
+            return all_of([negate(m.StateRef(o, NO_SPAN)) for o in others])
+        return any_of([m.StateRef(c, NO_SPAN) for c in chosen])
+    if all(isinstance(v, int) and not isinstance(v, bool) for v in field.values):
+        low, high = min(chosen), max(chosen)
+        if sorted(chosen) == list(range(low, high + 1)):  # a contiguous range
+            lowest, highest = min(field.values), max(field.values)
+            if len(chosen) == 1:
+                return _equals(field, low)
+            bounds = []
+            if low > lowest:
+                bounds.append(_compare(field, ">=", low) if high < highest else _compare(field, ">", low - 1))
+            if high < highest:
+                bounds.append(_compare(field, "<=", high) if low > lowest else _compare(field, "<", high + 1))
+            return all_of(bounds)
+    if len(others) < len(chosen):
+        return all_of([_equals(field, v, "!=") for v in others])
+    return any_of([_equals(field, v) for v in chosen])
+
+
+def readable(enc: Encoding, u: BDD) -> m.Expr:
+    """An expression that holds exactly where ``u`` holds (on valid states)."""
+    return _expr(enc, u & enc.valid(), _order(enc))
+
+
+def _expr(enc: Encoding, u: BDD, order: list[Field]) -> m.Expr:
+    if u == enc.false:
+        return FALSE
+    if (enc.valid() & ~u) == enc.false:
+        return TRUE
+    support = enc.bdd.support(u)
+    position = next(i for i, f in enumerate(order) if support & set(f.bits))
+    field, rest = order[position], order[position + 1 :]
+    groups: dict[Any, list[Any]] = {}
+    remainders: dict[Any, BDD] = {}
+    for index, value in enumerate(field.values):
+        remainder = enc.bdd.let(enc.assignment(field, index), u)
+        key = int(remainder)
+        groups.setdefault(key, []).append(value)
+        remainders[key] = remainder
+    parts = []
+    for key, values in groups.items():
+        remainder = remainders[key]
+        if remainder == enc.false:
+            continue
+        condition = membership(field, values)
+        sub = _expr(enc, remainder, rest)
+        pieces = [p for p in (condition, sub) if p is not None and p is not TRUE]
+        parts.append(all_of(pieces))
+    return any_of(parts)

@@ -1,0 +1,52 @@
+"""Transition relations of a network's events, as BDDs over current and next state."""
+
+from __future__ import annotations
+
+from robosc.plant.network import Automaton, Edge, Event, Network
+from robosc.synthesis.encoding import BDD, Encoding
+
+
+def edge_relation(enc: Encoding, automaton: Automaton, edge: Edge) -> BDD:
+    """One edge: source location, guard, target location, updates; the automaton's
+    other variables keep their values."""
+    relation = enc.at(edge.source) & enc.at(edge.target, primed=True)
+    if edge.guard is not None:
+        relation &= enc.boolean(edge.guard)
+    updated = set()
+    for update in edge.updates:
+        updated.add(update.variable)
+        field = enc.field(update.variable)
+        if update.value is None:
+            continue  # any value of the domain (primed validity is added by the caller)
+        next_value = enc.false
+        for value, where in enc.values(update.value).items():
+            if value in field.values:  # a value outside the domain: no transition
+                next_value |= where & enc.holds(update.variable, value, primed=True)
+        relation &= next_value
+    for variable in owned_variables(enc.network, automaton):
+        if variable not in updated:
+            relation &= enc.unchanged(enc.field(variable))
+    return relation
+
+
+def owned_variables(network: Network, automaton: Automaton) -> list:  # type: ignore[type-arg]
+    if automaton.component is None:
+        return []
+    return [v for v in network.variables if v.owner == automaton.component.name]
+
+
+def event_relation(enc: Encoding, event: Event) -> BDD:
+    """All automata that know ``event`` take one of their edges on it; the others stay."""
+    relation = enc.valid() & enc.valid(primed=True)
+    for automaton in enc.network.automata:
+        if event in automaton.alphabet:
+            choice = enc.false
+            for edge in automaton.edges:
+                if edge.event is event:
+                    choice |= edge_relation(enc, automaton, edge)
+            relation &= choice
+        else:
+            relation &= enc.unchanged(enc.field(automaton))
+            for variable in owned_variables(enc.network, automaton):
+                relation &= enc.unchanged(enc.field(variable))
+    return relation

@@ -1,0 +1,54 @@
+"""What synthesis gives: a guard per controllable event, or an explanation of why none exists."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from robosc.language import model as m
+from robosc.plant.network import Event, Network
+
+
+@dataclass(frozen=True)
+class EventGuard:
+    """For one controllable event: what the user's model says, and what synthesis added.
+
+    ``plant`` is where the plant (automata and their guards) allows the event;
+    ``required`` the user's requirements on it (None when there are none);
+    ``added`` the condition synthesis added (None when it added nothing).
+    The event may happen exactly where ``plant``, ``required`` and ``added`` all hold.
+    """
+
+    event: Event
+    required: m.Expr | None
+    added: m.Expr | None
+
+
+@dataclass(frozen=True)
+class Step:
+    event: Event
+    state: str  # the state reached, described
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """Why synthesis failed: the reason, and a shortest sequence of uncontrollable
+    events from the initial state to a state that must be avoided."""
+
+    reason: str
+    initial_state: str
+    path: tuple[Step, ...]
+
+
+@dataclass(frozen=True)
+class SynthesisResult:
+    network: Network
+    method: str  # "symbolic" or "explicit"
+    ok: bool
+    guards: tuple[EventGuard, ...] = ()
+    reachable_states: int = 0
+    seconds: float = 0.0
+    explanation: Explanation | None = None
+    details: dict[str, object] = field(default_factory=dict, repr=False)
+
+    def guard(self, name: str) -> EventGuard:
+        return next(g for g in self.guards if g.event.name == name)

@@ -1,0 +1,28 @@
+"""A concrete state of a network: one location per automaton, one value per variable."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from robosc.language import model as m
+from robosc.language.render import literal
+from robosc.plant.network import AutomatonKind, Network
+
+
+@dataclass(frozen=True)
+class NetworkState:
+    locations: tuple[m.State, ...]  # in the order of network.automata
+    values: tuple[object, ...]  # in the order of network.variables
+
+
+def describe(network: Network, state: NetworkState) -> str:
+    """A state as people read it: component states, variables, busy communication."""
+    parts = []
+    for automaton, location in zip(network.automata, state.locations, strict=True):
+        if automaton.kind is AutomatonKind.COMPONENT or (
+            automaton.kind in (AutomatonKind.SERVICE, AutomatonKind.ACTION) and location is not automaton.initial
+        ):
+            parts.append(f"{automaton.name}.{location.name}")
+    for variable, value in zip(network.variables, state.values, strict=True):
+        parts.append(f"{variable.owner}.{variable.name} = {literal(value)}")
+    return ", ".join(parts) if parts else "(the only state)"

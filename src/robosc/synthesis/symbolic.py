@@ -1,0 +1,164 @@
+"""Symbolic supervisor synthesis with BDDs (Ramadge-Wonham, in the data-based form of
+Ouedraogo et al. / CIF 3).
+
+Bad states start as those where an uncontrollable event can happen that a
+requirement forbids. Then, until nothing changes: every state from which an
+uncontrollable event leads to a bad state is bad (controllability), and every
+state that cannot reach a marked state through good states, using events the
+requirements allow, is bad (nonblocking). A controllable event is allowed where
+the plant allows it, its requirements hold, and none of its successors is bad.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Any
+
+from dd import cudd
+
+from robosc.language import model as m
+from robosc.plant.expressions import all_of
+from robosc.plant.network import Event, Network
+from robosc.synthesis.encoding import BDD, Encoding
+from robosc.synthesis.relations import event_relation
+from robosc.synthesis.result import EventGuard, SynthesisResult
+from robosc.synthesis.state import NetworkState
+
+
+@dataclass
+class Fixpoint:
+    """The BDDs of one synthesis run, kept for questions asked afterwards."""
+
+    enc: Encoding
+    relation: dict[Event, BDD]
+    required: dict[Event, BDD]
+    enabled: dict[Event, BDD]
+    initial: BDD
+    marked: BDD
+    requirement_bad: BDD
+    bad: BDD
+    allowed: dict[Event, BDD]  # controllable events: where the supervisor allows them
+    reachable: BDD
+
+    def allows(self, event: Event, state: NetworkState) -> bool:
+        """Whether ``event`` can happen in ``state`` under the supervisor."""
+        here = self.state(state)
+        if event.controllable:
+            return (here & self.allowed[event]) != self.enc.false
+        return (here & self.enabled[event] & ~self.bad) != self.enc.false
+
+    def state(self, state: NetworkState) -> BDD:
+        network = self.enc.network
+        locations = dict(zip(network.automata, state.locations, strict=True))
+        values = dict(zip(network.variables, state.values, strict=True))
+        return self.enc.state(locations, values)
+
+
+def initial_state(network: Network) -> NetworkState:
+    return NetworkState(
+        tuple(a.initial for a in network.automata), tuple(network.initial_values[v] for v in network.variables)
+    )
+
+
+def _closure(enc: Encoding, start: BDD, relations: list[BDD]) -> BDD:
+    """``start`` and every state with a path into it over ``relations``."""
+    result = start
+    while True:
+        grown = result
+        for relation in relations:
+            grown |= enc.pre(relation, result)
+        if grown == result:
+            return result
+        result = grown
+
+
+def fixpoint(network: Network) -> Fixpoint:
+    enc = Encoding(network)
+    relation = {e: event_relation(enc, e) for e in network.events}
+    required = {e: enc.true for e in network.events}
+    for requirement in network.requirements:
+        required[requirement.event] &= enc.boolean(requirement.condition)
+    enabled = {e: cudd.and_exists(r, enc.true, enc.xp_vars) if enc.xp_vars else r for e, r in relation.items()}
+    marked = enc.valid()
+    for automaton in network.automata:
+        here = enc.false
+        for location in automaton.marked:
+            here |= enc.at(location)
+        marked &= here
+    initial = enc.state(
+        {a: a.initial for a in network.automata}, {v: network.initial_values[v] for v in network.variables}
+    )
+    uncontrollable = [relation[e] for e in network.uncontrollable]
+    restricted = [relation[e] & required[e] for e in network.events]
+    requirement_bad = enc.false
+    for event in network.uncontrollable:
+        requirement_bad |= enabled[event] & ~required[event]
+
+    bad = requirement_bad
+    while True:
+        bad = _closure(enc, bad, uncontrollable)
+        good = marked & ~bad
+        while True:
+            grown = good
+            for r in restricted:
+                grown |= enc.pre(r, good)
+            grown &= ~bad
+            if grown == good:
+                break
+            good = grown
+        new_bad = enc.valid() & ~good
+        if new_bad == bad:
+            break
+        bad = new_bad
+
+    allowed = {
+        e: enabled[e] & required[e] & ~bad & ~enc.pre(relation[e], bad) for e in network.events if e.controllable
+    }
+    reachable = enc.false
+    if (initial & bad) == enc.false:
+        steps = [relation[e] & allowed[e] for e in network.controllable] + uncontrollable
+        reachable = frontier = initial
+        while frontier != enc.false:
+            image = enc.false
+            for r in steps:
+                image |= enc.post(r, frontier)
+            frontier = image & ~reachable
+            reachable |= frontier
+    return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
+
+
+def synthesize_symbolic(network: Network) -> SynthesisResult:
+    """The maximally permissive controllable, nonblocking supervisor of ``network``."""
+    from robosc.synthesis.explain import explain
+    from robosc.synthesis.readable import readable
+
+    start = time.perf_counter()
+    fp = fixpoint(network)
+    enc = fp.enc
+    if (fp.initial & fp.bad) != enc.false:
+        explanation = explain(fp)
+        seconds = time.perf_counter() - start
+        return SynthesisResult(
+            network, "symbolic", False, explanation=explanation, seconds=seconds, details={"fixpoint": fp}
+        )
+    guards = []
+    for event in network.controllable:
+        conditions = [r.condition for r in network.requirements_on(event)]
+        required: m.Expr | None = all_of(conditions) if conditions else None
+        care = fp.reachable & fp.enabled[event] & fp.required[event]
+        beyond = ~enc.pre(fp.relation[event], fp.bad)
+        added: m.Expr | None = None
+        if (care & ~beyond) != enc.false:
+            added = readable(enc, cudd.restrict(beyond, care))
+        guards.append(EventGuard(event, required, added))
+    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd)}
+    return SynthesisResult(
+        network,
+        "symbolic",
+        True,
+        tuple(guards),
+        enc.count(fp.reachable),
+        time.perf_counter() - start,
+        details=details,
+    )
