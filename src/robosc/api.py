@@ -20,15 +20,19 @@ from robosc.language.model import Model
 from robosc.language.parser import parse_source
 from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
+from robosc.synthesis.result import SynthesisResult
 
 __all__ = [
     "CheckResult",
     "InputError",
     "ModelError",
+    "SynthesisResult",
     "check_file",
     "check_text",
     "format_text",
     "load_model",
+    "synthesize_file",
+    "synthesize_model",
 ]
 
 
@@ -111,3 +115,27 @@ def format_text(text: str, path: str = "<text>") -> str | CheckResult:
     if parsed.syntax is None:
         return CheckResult(None, parsed.diagnostics, {path: source})
     return format_syntax(parsed.syntax)
+
+
+def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
+    """The supervisor of a checked robot model.
+
+    ``result.ok`` tells whether one exists; ``result.guards`` gives, for each
+    controllable event, the user's condition and the condition synthesis added;
+    ``result.allows(event, state)`` answers for a concrete network state;
+    ``result.explanation`` says why synthesis failed.
+    """
+    from robosc.plant import build_network
+    from robosc.synthesis import synthesize, synthesize_explicit
+
+    network = build_network(model)
+    if method == "explicit":
+        return synthesize_explicit(network)
+    if method != "symbolic":
+        raise ValueError(f"unknown synthesis method '{method}' (symbolic or explicit)")
+    return synthesize(network)
+
+
+def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:
+    """Load, check and synthesize a model file (raises :class:`ModelError` on model errors)."""
+    return synthesize_model(load_model(path, search_paths))

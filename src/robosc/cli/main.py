@@ -14,6 +14,7 @@ import click
 
 from robosc.cli.check import check
 from robosc.cli.fmt import fmt
+from robosc.cli.synthesize import synthesize
 
 EXIT_INTERNAL = 3
 
@@ -26,6 +27,7 @@ def cli() -> None:
 
 cli.add_command(check)
 cli.add_command(fmt)
+cli.add_command(synthesize)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -143,7 +143,7 @@ class Encoding:
     def state(self, locations: dict[Automaton, m.State], values: dict[m.Variable, Any]) -> BDD:
         """The BDD of one concrete state."""
         result = self.true
-        for automaton, location in locations.items():
+        for location in locations.values():
             result &= self.at(location)
         for variable, value in values.items():
             result &= self.holds(variable, value)

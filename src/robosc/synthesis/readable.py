@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from dd import cudd
+
 from robosc.language import model as m
 from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
 from robosc.plant.network import Automaton, AutomatonKind
@@ -46,9 +48,10 @@ def _compare(field: Field, op: str, value: int) -> m.Expr:
     return m.Binary(op, _ref(field), m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
 
 
-def membership(field: Field, chosen: list[Any]) -> m.Expr | None:
-    """``field`` has one of the ``chosen`` values; None when that is every value."""
-    others = [v for v in field.values if v not in chosen]
+def membership(field: Field, chosen: list[Any], free: list[Any]) -> m.Expr | None:
+    """``field`` has one of the ``chosen`` values (values in ``free`` may go either way);
+    None when no condition is needed."""
+    others = [v for v in field.values if v not in chosen and v not in free]
     if not others:
         return None
     if isinstance(field.item, Automaton):
@@ -56,49 +59,62 @@ def membership(field: Field, chosen: list[Any]) -> m.Expr | None:
             return all_of([negate(m.StateRef(o, NO_SPAN)) for o in others])
         return any_of([m.StateRef(c, NO_SPAN) for c in chosen])
     if all(isinstance(v, int) and not isinstance(v, bool) for v in field.values):
+        values = sorted([*chosen, *free])
         low, high = min(chosen), max(chosen)
-        if sorted(chosen) == list(range(low, high + 1)):  # a contiguous range
+        if all(v in values for v in range(low, high + 1)):  # a contiguous range (with free values)
             lowest, highest = min(field.values), max(field.values)
-            if len(chosen) == 1:
+            if low == high and not any(v in free for v in (low - 1, low + 1)):
                 return _equals(field, low)
+            reaches_low = all(v in values for v in range(lowest, low))
+            reaches_high = all(v in values for v in range(high + 1, highest + 1))
             bounds = []
-            if low > lowest:
-                bounds.append(_compare(field, ">=", low) if high < highest else _compare(field, ">", low - 1))
-            if high < highest:
-                bounds.append(_compare(field, "<=", high) if low > lowest else _compare(field, "<", high + 1))
+            if not reaches_low:
+                bounds.append(_compare(field, ">=", low))
+            if not reaches_high:
+                bounds.append(_compare(field, "<=", high) if not reaches_low else _compare(field, "<", high + 1))
             return all_of(bounds)
     if len(others) < len(chosen):
         return all_of([_equals(field, v, "!=") for v in others])
     return any_of([_equals(field, v) for v in chosen])
 
 
-def readable(enc: Encoding, u: BDD) -> m.Expr:
-    """An expression that holds exactly where ``u`` holds (on valid states)."""
-    return _expr(enc, u & enc.valid(), _order(enc))
+def readable(enc: Encoding, u: BDD, care: BDD | None = None) -> m.Expr:
+    """An expression that holds where ``u`` holds, on the states of ``care`` (default:
+    every valid state); outside ``care`` it may say anything."""
+    region = enc.valid() if care is None else care & enc.valid()
+    return _expr(enc, u, region, _order(enc))
 
 
-def _expr(enc: Encoding, u: BDD, order: list[Field]) -> m.Expr:
-    if u == enc.false:
+def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
+    if (u & care) == enc.false:
         return FALSE
-    if (enc.valid() & ~u) == enc.false:
+    if (care & ~u) == enc.false:
         return TRUE
+    u = cudd.restrict(u, care)
     support = enc.bdd.support(u)
     position = next(i for i, f in enumerate(order) if support & set(f.bits))
     field, rest = order[position], order[position + 1 :]
-    groups: dict[Any, list[Any]] = {}
-    remainders: dict[Any, BDD] = {}
+    groups: dict[int, list[Any]] = {}
+    remainders: dict[int, tuple[BDD, BDD]] = {}
+    free: list[Any] = []
     for index, value in enumerate(field.values):
-        remainder = enc.bdd.let(enc.assignment(field, index), u)
+        assignment = enc.assignment(field, index)
+        care_here = enc.bdd.let(assignment, care)
+        if care_here == enc.false:
+            free.append(value)
+            continue
+        remainder = cudd.restrict(enc.bdd.let(assignment, u), care_here)
         key = int(remainder)
         groups.setdefault(key, []).append(value)
-        remainders[key] = remainder
+        previous = remainders.get(key)
+        remainders[key] = (remainder, care_here if previous is None else previous[1] | care_here)
     parts = []
     for key, values in groups.items():
-        remainder = remainders[key]
-        if remainder == enc.false:
+        remainder, care_here = remainders[key]
+        if (remainder & care_here) == enc.false:
             continue
-        condition = membership(field, values)
-        sub = _expr(enc, remainder, rest)
+        condition = membership(field, values, free)
+        sub = _expr(enc, remainder, care_here, rest)
         pieces = [p for p in (condition, sub) if p is not None and p is not TRUE]
         parts.append(all_of(pieces))
     return any_of(parts)

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from robosc.language import model as m
 from robosc.plant.network import Event, Network
+from robosc.synthesis.state import NetworkState
 
 
 @dataclass(frozen=True)
@@ -52,3 +53,15 @@ class SynthesisResult:
 
     def guard(self, name: str) -> EventGuard:
         return next(g for g in self.guards if g.event.name == name)
+
+    @property
+    def added_guards(self) -> tuple[EventGuard, ...]:
+        """The controllable events on which synthesis added a condition."""
+        return tuple(g for g in self.guards if g.added is not None)
+
+    def allows(self, event: Event | str, state: NetworkState) -> bool:
+        """Whether the supervisor lets ``event`` happen in ``state`` (of :attr:`network`)."""
+        found = self.network.event(event) if isinstance(event, str) else event
+        supervisor = self.details.get("fixpoint") or self.details.get("supervisor")
+        assert supervisor is not None
+        return bool(supervisor.allows(found, state))

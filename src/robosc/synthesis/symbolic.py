@@ -150,7 +150,7 @@ def synthesize_symbolic(network: Network) -> SynthesisResult:
         beyond = ~enc.pre(fp.relation[event], fp.bad)
         added: m.Expr | None = None
         if (care & ~beyond) != enc.false:
-            added = readable(enc, cudd.restrict(beyond, care))
+            added = readable(enc, beyond, care)
         guards.append(EventGuard(event, required, added))
     details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd)}
     return SynthesisResult(

@@ -1,0 +1,102 @@
+"""``robosc synthesize FILE [-I DIR] [--json]``."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import click
+
+from robosc.api import InputError, ModelError, SynthesisResult, load_model, synthesize_model
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem
+from robosc.language.render import render
+
+
+def as_json(result: SynthesisResult) -> dict[str, Any]:
+    explanation = result.explanation
+    return {
+        "model": result.network.model.name,
+        "ok": result.ok,
+        "method": result.method,
+        "reachable_states": result.reachable_states if result.ok else None,
+        "seconds": round(result.seconds, 6),
+        "events": [
+            {
+                "event": g.event.name,
+                "kind": g.event.kind.value,
+                "required": render(g.required) if g.required is not None else None,
+                "added": render(g.added) if g.added is not None else None,
+            }
+            for g in result.guards
+        ],
+        "explanation": None
+        if explanation is None
+        else {
+            "reason": explanation.reason,
+            "initial_state": explanation.initial_state,
+            "path": [{"event": s.event.name, "state": s.state} for s in explanation.path],
+        },
+    }
+
+
+def print_result(result: SynthesisResult) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console(highlight=False)
+    name = result.network.model.name
+    if not result.ok:
+        explanation = result.explanation
+        assert explanation is not None
+        console.print(f"[bold red]synthesis failed[/] for {name}: no supervisor can keep the requirements")
+        console.print(f"  initial state: {explanation.initial_state}", markup=False)
+        if explanation.path:
+            console.print("  uncontrollable events from the initial state:")
+            for number, step in enumerate(explanation.path, 1):
+                console.print(f"    {number}. {step.event.name}  ->  {step.state}", markup=False)
+        else:
+            console.print("  (the problem is already in the initial state)")
+        console.print(f"  why: {explanation.reason}", markup=False)
+        return
+    table = Table(title=f"supervisor for {name}", title_justify="left")
+    table.add_column("controllable event", no_wrap=True)
+    table.add_column("your condition")
+    table.add_column("added by synthesis")
+    for guard in result.guards:
+        required = render(guard.required) if guard.required is not None else "-"
+        added = render(guard.added) if guard.added is not None else "-"
+        table.add_row(guard.event.name, required, f"[bold]{added}[/]" if guard.added is not None else added)
+    console.print(table)
+    added = len(result.added_guards)
+    console.print(
+        f"{result.reachable_states} reachable states in the controlled system; "
+        f"synthesis added a condition to {added} of {len(result.guards)} controllable events; "
+        f"{result.seconds * 1000:.1f} ms"
+    )
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@include_option
+@click.option("--json", "as_json_output", is_flag=True, help="Print the result as JSON.")
+@click.option("--explicit", is_flag=True, help="Use explicit-state synthesis (small models; for cross-checking).")
+@click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
+def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explicit: bool, show_network: bool) -> None:
+    """Synthesize the supervisor of a model: for each controllable event, your condition
+    and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
+    try:
+        model = load_model(file, include)
+    except InputError as exc:
+        raise input_problem(str(exc)) from None
+    except ModelError as exc:
+        click.echo(exc.result.render(), err=True)
+        raise exit_with(EXIT_MODEL_ERRORS) from None
+    result = synthesize_model(model, "explicit" if explicit else "symbolic")
+    if show_network:
+        click.echo(show_network(result.network))
+        click.echo()
+    if as_json_output:
+        click.echo(json.dumps(as_json(result), indent=2))
+    else:
+        print_result(result)
+    raise exit_with(EXIT_OK if result.ok else EXIT_MODEL_ERRORS)

@@ -1,0 +1,212 @@
+"""Synthesis on textbook cases with known answers, failures with explanations, and the examples."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from conftest import EXAMPLES
+from robosc.api import check_text, synthesize_model
+from robosc.cli.main import main
+from robosc.language.render import render
+from robosc.plant import build_network
+from robosc.synthesis import synthesize, synthesize_explicit
+
+# Ramadge & Wonham's small factory: machine 1 makes a part into a one-slot buffer,
+# machine 2 takes it out. A part made while the buffer is full overflows it.
+SMALL_FACTORY = """
+robot SmallFactory {
+    component M1 {
+        service make with request: none, response: none
+    }
+    component M2 {
+        service take with request: none, response: none
+    }
+    component Buffer {
+        behaviour {
+            initial marked state empty {
+                on response from make goto full
+            }
+            marked state full {
+                on request to take goto empty
+                on response from make goto overflow
+            }
+            state overflow {
+                on request to clear goto empty
+            }
+        }
+    }
+    // Clearing an overflow needs an operator, who never comes: an overflow blocks.
+    component Operator {
+        service clear with request: none, response: none
+    }
+    requirement clear needs Buffer.empty
+}
+"""
+
+
+def load(text: str):
+    result = check_text(text)
+    assert result.model is not None, result.render()
+    return result.model
+
+
+def test_small_factory_known_supervisor():
+    result = synthesize_model(load(SMALL_FACTORY))
+    assert result.ok
+    # Known answer: machine 1 may start only when the buffer is empty; machine 2 only needs
+    # the plant (it takes from a full buffer), so synthesis adds nothing there.
+    assert render(result.guard("make.c_trigger").added) == "Buffer.empty"
+    assert result.guard("take.c_trigger").added is None
+
+
+def test_small_factory_agrees_with_explicit_synthesis():
+    network = build_network(load(SMALL_FACTORY))
+    symbolic, explicit = synthesize(network), synthesize_explicit(network)
+    assert symbolic.ok and explicit.ok
+    assert symbolic.reachable_states == explicit.reachable_states
+    supervisor = explicit.details["supervisor"]
+    for state in supervisor.states:
+        for event in network.events:
+            assert symbolic.allows(event, state) == explicit.allows(event, state)
+
+
+UNAVOIDABLE = """
+robot Unavoidable {
+    component Sensor {
+        outgoing message detect with type: none
+        outgoing message beep with type: none
+        behaviour {
+            initial marked state quiet {
+                on response from detect goto alert
+            }
+            marked state alert {
+                on response from beep goto quiet
+            }
+        }
+    }
+    requirement beep needs Sensor.quiet
+}
+"""
+
+
+def test_failure_names_the_requirement_and_the_shortest_path():
+    result = synthesize_model(load(UNAVOIDABLE))
+    assert not result.ok
+    explanation = result.explanation
+    assert [step.event.name for step in explanation.path] == ["detect"]
+    assert explanation.path[0].state == "Sensor.alert"
+    assert "uncontrollable event 'beep'" in explanation.reason
+    assert "requirement beep needs Sensor.quiet" in explanation.reason
+    assert explanation.initial_state == "Sensor.quiet"
+
+
+def test_failure_in_the_initial_state_has_an_empty_path():
+    result = synthesize_model(load(UNAVOIDABLE.replace("needs Sensor.quiet", "needs Sensor.alert")))
+    assert not result.ok and result.explanation.path == ()
+    assert "requirement beep needs Sensor.alert" in result.explanation.reason
+
+
+BLOCKING = """
+robot Blocking {
+    component Robot {
+        outgoing message crash with type: none
+        service repair with request: none, response: none
+        behaviour {
+            initial marked state working {
+                on response from crash goto broken
+            }
+            state broken {
+                on request to repair goto working
+            }
+        }
+    }
+    requirement repair needs Robot.working
+}
+"""
+
+
+def test_blocking_failure_is_explained():
+    result = synthesize_model(load(BLOCKING))
+    assert not result.ok
+    assert [step.event.name for step in result.explanation.path] == ["crash"]
+    assert "would block" in result.explanation.reason
+    assert "Robot.broken" in result.explanation.reason
+
+
+def test_responsiveness_lets_uncontrollable_events_happen_in_every_state():
+    # Motor mentions 'overheat' only in on_state, but components never block uncontrollable
+    # events (SEMANTICS.md 1): overheat can come in 'off' too. Since overheat needs the door
+    # closed, the supervisor may never open the door.
+    text = """
+    robot Pump {
+        component Door {
+            incoming message open with type: none
+            incoming message close with type: none
+            behaviour {
+                initial marked state closed { on request to open goto opened }
+                marked state opened { on request to close goto closed }
+            }
+        }
+        component Motor {
+            service run with request: none, response: none
+            outgoing message overheat with type: none
+            behaviour {
+                initial marked state off {
+                    on request to run goto on_state
+                }
+                marked state on_state {
+                    on response from overheat
+                    on response from run goto off
+                }
+            }
+        }
+        requirement overheat needs Door.closed
+    }
+    """
+    result = synthesize_model(load(text))
+    assert result.ok
+    assert render(result.guard("open").added) == "false"
+    assert result.guard("close").added is None and result.guard("run.c_trigger").added is None
+
+
+@pytest.mark.parametrize("name", ["line_follower", "maze_solver", "pick_and_light"])
+def test_examples_synthesize_and_agree(name: str):
+    from robosc.api import load_model
+
+    model = load_model(EXAMPLES / f"{name}.rscd")
+    network = build_network(model)
+    symbolic = synthesize(network)
+    explicit = synthesize_explicit(network)
+    assert symbolic.ok and explicit.ok
+    assert symbolic.reachable_states == explicit.reachable_states > 0
+
+
+def test_cli_synthesize_text_and_json(capsys):
+    assert main(["synthesize", str(EXAMPLES / "maze_solver.rscd")]) == 0
+    out = capsys.readouterr().out
+    assert "supervisor for MazeSolver" in out and "128 reachable states" in out
+    assert main(["synthesize", "--json", str(EXAMPLES / "maze_solver.rscd")]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["ok"] and data["reachable_states"] == 128
+    movement = next(e for e in data["events"] if e["event"] == "movement")
+    assert movement["required"].startswith("Platform.ready and ")
+
+
+def test_cli_synthesize_failure_exits_one_with_explanation(tmp_path, capsys):
+    model = tmp_path / "u.rscd"
+    model.write_text(UNAVOIDABLE)
+    assert main(["synthesize", str(model)]) == 1
+    out = capsys.readouterr().out
+    assert "synthesis failed" in out and "1. detect" in out and "requirement beep needs Sensor.quiet" in out
+    assert main(["synthesize", "--json", str(model)]) == 1
+    data = json.loads(capsys.readouterr().out)
+    assert data["ok"] is False and data["explanation"]["path"][0]["event"] == "detect"
+
+
+def test_cli_synthesize_model_error_exits_one(tmp_path, capsys):
+    model = tmp_path / "bad.rscd"
+    model.write_text("robot R { requirement x needs true }")
+    assert main(["synthesize", str(model)]) == 1
+    assert "unknown communication 'x'" in capsys.readouterr().err
