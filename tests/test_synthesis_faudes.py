@@ -1,0 +1,165 @@
+"""libFAUDES (SupCon: supremal controllable, nonblocking) as an independent oracle for
+synthesis on models without variables and guards.
+
+The plant is the parallel composition of the network's automata. Each requirement
+"e only where C" whose condition speaks of one component becomes a specification
+automaton: a copy of that component in which e is possible only in the locations
+where C holds. The supervisor libFAUDES computes must then have exactly the states
+and transitions of robosc's controlled system.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+
+from hypothesis import HealthCheck, assume, given, settings
+
+from random_models import robots
+from robosc.api import check_text
+from robosc.language import model as m
+from robosc.plant import build_network
+from robosc.plant.network import Automaton, Network
+from robosc.synthesis import synthesize, synthesize_explicit
+from robosc.synthesis.evaluate import evaluate
+from test_synthesis import SMALL_FACTORY
+
+with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+    import faudes
+
+
+def _name(text: str) -> str:
+    return text.replace(".", "__")
+
+
+def _generator(automaton: Automaton, network: Network, system: bool) -> faudes.Generator:
+    g = faudes.System() if system else faudes.Generator()
+    for event in automaton.alphabet:
+        g.InsEvent(_name(event.name))
+        if system and event.controllable:
+            g.SetControllable(_name(event.name))
+    for location in automaton.locations:
+        index = g.InsInitState(location.name) if location is automaton.initial else g.InsState(location.name)
+        if location.marked:
+            g.SetMarkedState(index)
+    for edge in automaton.edges:
+        g.SetTransition(edge.source.name, _name(edge.event.name), edge.target.name)
+    return g
+
+
+def _deterministic(network: Network) -> bool:
+    for automaton in network.automata:
+        seen = set()
+        for edge in automaton.edges:
+            key = (edge.source, edge.event)
+            if key in seen:
+                return False
+            seen.add(key)
+    return True
+
+
+def _spec(network: Network, requirement, alphabet: faudes.EventSet) -> faudes.Generator | None:
+    owners = {n.state.owner for n in m.walk(requirement.condition) if isinstance(n, m.StateRef)}
+    if len(owners) != 1:
+        return None
+    automaton = next(a for a in network.automata if a.name in owners)
+    g = faudes.Generator()
+    event = _name(requirement.event.name)
+    for e in automaton.alphabet:
+        g.InsEvent(_name(e.name))
+    g.InsEvent(event)
+    for location in automaton.locations:
+        index = g.InsInitState(location.name) if location is automaton.initial else g.InsState(location.name)
+        g.SetMarkedState(index)
+    holds = {loc: bool(evaluate(requirement.condition, {loc}, {})) for loc in automaton.locations}
+    for edge in automaton.edges:
+        if edge.event is not requirement.event or holds[edge.source]:
+            g.SetTransition(edge.source.name, _name(edge.event.name), edge.target.name)
+    if requirement.event not in automaton.alphabet:
+        for location in automaton.locations:
+            if holds[location]:
+                g.SetTransition(location.name, event, location.name)
+    faudes.InvProject(g, alphabet)
+    return g
+
+
+def faudes_supervisor(network: Network) -> tuple[int, int] | None:
+    """(states, transitions) of libFAUDES's supervisor; None if the requirements are out of its reach."""
+    plant = faudes.System()
+    generators = [_generator(a, network, True) for a in network.automata]
+    plant.Assign(generators[0])
+    for g in generators[1:]:
+        product = faudes.System()
+        faudes.Parallel(plant, g, product)
+        plant = product
+    for event in network.events:  # Parallel drops attributes: set controllability on the product
+        if event.controllable:
+            plant.SetControllable(_name(event.name))
+    alphabet = plant.Alphabet()
+    spec = faudes.Generator()
+    index = spec.InsInitState("all")
+    spec.SetMarkedState(index)
+    spec.InjectAlphabet(alphabet)
+    for event in network.events:
+        spec.SetTransition("all", _name(event.name), "all")
+    for requirement in network.requirements:
+        part = _spec(network, requirement, alphabet)
+        if part is None:
+            return None
+        product = faudes.Generator()
+        faudes.Parallel(spec, part, product)
+        spec = product
+    supervisor = faudes.Generator()
+    faudes.SupCon(plant, spec, supervisor)
+    faudes.Accessible(supervisor)
+    return supervisor.Size(), supervisor.TransRelSize()
+
+
+def robosc_supervisor(network: Network) -> tuple[int, int]:
+    explicit = synthesize_explicit(network)
+    if not explicit.ok:
+        return 0, 0
+    supervisor = explicit.details["supervisor"]
+    reachable = [s for s in supervisor.states if _reachable(supervisor, s)]
+    transitions = sum(1 for s in reachable for e, _ in supervisor.transitions[s] if supervisor.allows(e, s))
+    return len(reachable), transitions
+
+
+def _reachable(supervisor, state) -> bool:
+    if not hasattr(supervisor, "_reach"):
+        from collections import deque
+
+        start = supervisor.states[0]
+        reach = set()
+        if start not in supervisor.bad:
+            reach = {start}
+            queue = deque([start])
+            while queue:
+                s = queue.popleft()
+                for e, t in supervisor.transitions[s]:
+                    if t not in reach and supervisor.allows(e, s):
+                        reach.add(t)
+                        queue.append(t)
+        supervisor._reach = reach
+    return state in supervisor._reach
+
+
+def test_small_factory_matches_libfaudes():
+    network = build_network(check_text(SMALL_FACTORY).model)
+    expected = faudes_supervisor(network)
+    assert expected is not None
+    assert robosc_supervisor(network) == expected
+    assert synthesize(network).reachable_states == expected[0]
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(robots(variables=False, guards=False))
+def test_random_models_match_libfaudes(text: str) -> None:
+    network = build_network(check_text(text).model)
+    assume(_deterministic(network))
+    expected = faudes_supervisor(network)
+    assume(expected is not None)
+    symbolic = synthesize(network)
+    assert symbolic.ok == (expected[0] > 0), text
+    assert robosc_supervisor(network) == expected, text
+    assert symbolic.reachable_states == expected[0], text
