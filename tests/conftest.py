@@ -1,5 +1,6 @@
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
@@ -46,3 +47,6 @@ def robot(*body: str) -> str:
         "    }\n"
         "  }\n" + "\n".join(body) + "\n}\n"
     )
+
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))  # the model families

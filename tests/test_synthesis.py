@@ -171,6 +171,31 @@ def test_responsiveness_lets_uncontrollable_events_happen_in_every_state():
     assert result.guard("close").added is None and result.guard("run.c_trigger").added is None
 
 
+@pytest.mark.parametrize("n", [2, 3, 4])
+def test_dining_philosophers_guards_prevent_the_deadlock(n: int):
+    from families import philosophers
+    from test_synthesis_agreement import assert_readable_guards_are_exact
+
+    network = build_network(load(philosophers(n)))
+    symbolic, explicit = synthesize(network), synthesize_explicit(network)
+    assert symbolic.ok and symbolic.reachable_states == explicit.reachable_states
+    assert {g.event.name for g in symbolic.added_guards} == {f"take_left{i}" for i in range(n)}
+    assert_readable_guards_are_exact(symbolic, explicit.details["supervisor"])
+    if n == 3:
+        assert render(symbolic.guard("take_left1").added) == "P0.thinking or P2.thinking"
+
+
+def test_transfer_line_guards():
+    from families import transfer_line
+
+    result = synthesize_model(load(transfer_line(4)))
+    assert [(g.event.name, render(g.added)) for g in result.added_guards] == [
+        ("work1.c_trigger", "B1.empty"),
+        ("work2.c_trigger", "B2.empty"),
+        ("work3.c_trigger", "B3.empty"),
+    ]
+
+
 @pytest.mark.parametrize("name", ["line_follower", "maze_solver", "pick_and_light"])
 def test_examples_synthesize_and_agree(name: str):
     from robosc.api import load_model

@@ -116,32 +116,10 @@ def faudes_supervisor(network: Network) -> tuple[int, int] | None:
 
 
 def robosc_supervisor(network: Network) -> tuple[int, int]:
-    explicit = synthesize_explicit(network)
-    if not explicit.ok:
-        return 0, 0
-    supervisor = explicit.details["supervisor"]
-    reachable = [s for s in supervisor.states if _reachable(supervisor, s)]
+    supervisor = synthesize_explicit(network).details["supervisor"]
+    reachable = supervisor.controlled_states()
     transitions = sum(1 for s in reachable for e, _ in supervisor.transitions[s] if supervisor.allows(e, s))
     return len(reachable), transitions
-
-
-def _reachable(supervisor, state) -> bool:
-    if not hasattr(supervisor, "_reach"):
-        from collections import deque
-
-        start = supervisor.states[0]
-        reach = set()
-        if start not in supervisor.bad:
-            reach = {start}
-            queue = deque([start])
-            while queue:
-                s = queue.popleft()
-                for e, t in supervisor.transitions[s]:
-                    if t not in reach and supervisor.allows(e, s):
-                        reach.add(t)
-                        queue.append(t)
-        supervisor._reach = reach
-    return state in supervisor._reach
 
 
 def test_small_factory_matches_libfaudes():

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import click
 
 from robosc.cli.check import check
+from robosc.cli.cif import cif
 from robosc.cli.fmt import fmt
 from robosc.cli.synthesize import synthesize
 
@@ -28,6 +29,7 @@ def cli() -> None:
 cli.add_command(check)
 cli.add_command(fmt)
 cli.add_command(synthesize)
+cli.add_command(cif)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

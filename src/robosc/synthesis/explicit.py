@@ -97,6 +97,23 @@ class ExplicitSupervisor:
             return True
         return self.required_ok[(state, event)] and all(t not in self.bad for t in targets)
 
+    def controlled_states(self) -> list[NetworkState]:
+        """The states reachable under the supervisor, in breadth-first order."""
+        start = self.states[0]
+        if start in self.bad:
+            return []
+        reached = {start}
+        order = [start]
+        queue = deque([start])
+        while queue:
+            state = queue.popleft()
+            for event, target in self.transitions[state]:
+                if target not in reached and self.allows(event, state):
+                    reached.add(target)
+                    order.append(target)
+                    queue.append(target)
+        return order
+
 
 def synthesize_explicit(network: Network, max_states: int = 200_000) -> SynthesisResult:
     start = time.perf_counter()
@@ -153,16 +170,7 @@ def synthesize_explicit(network: Network, max_states: int = 200_000) -> Synthesi
         bad = new_bad
 
     supervisor = ExplicitSupervisor(network, order, transitions, required_ok, bad)
-    reachable: set[NetworkState] = set()
-    if init not in bad:
-        reachable = {init}
-        queue = deque([init])
-        while queue:
-            state = queue.popleft()
-            for event, target in transitions[state]:
-                if target not in reachable and supervisor.allows(event, state):
-                    reachable.add(target)
-                    queue.append(target)
+    reachable = supervisor.controlled_states()
     return SynthesisResult(
         network,
         "explicit",

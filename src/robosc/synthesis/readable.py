@@ -108,13 +108,17 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
         groups.setdefault(key, []).append(value)
         previous = remainders.get(key)
         remainders[key] = (remainder, care_here if previous is None else previous[1] | care_here)
-    parts = []
-    for key, values in groups.items():
+    subs = {}
+    for key in groups:
         remainder, care_here = remainders[key]
-        if (remainder & care_here) == enc.false:
-            continue
-        condition = membership(field, values, free)
-        sub = _expr(enc, remainder, care_here, rest)
+        if (remainder & care_here) != enc.false:
+            subs[key] = _expr(enc, remainder, care_here, rest)
+    # Where the answer is already "true", the other groups need not exclude those values:
+    # "A or (!A and B)" reads better as "A or B".
+    settled = [v for key, sub in subs.items() if sub is TRUE for v in groups[key]]
+    parts = []
+    for key, sub in subs.items():
+        condition = membership(field, groups[key], free if sub is TRUE else free + settled)
         pieces = [p for p in (condition, sub) if p is not None and p is not TRUE]
         parts.append(all_of(pieces))
     return any_of(parts)

@@ -1,0 +1,37 @@
+"""``robosc cif FILE -o OUT.cif [-I DIR]``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from robosc.api import InputError, ModelError, load_model
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with, include_option, input_problem
+from robosc.codegen.cif import to_cif
+from robosc.plant import build_network
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True, help="The CIF file to write.")
+@include_option
+def cif(file: str, output: str, include: tuple[str, ...]) -> None:
+    """Write the model's plants and requirements as CIF 3 text (for Eclipse ESCET)."""
+    try:
+        model = load_model(file, include)
+    except InputError as exc:
+        raise input_problem(str(exc)) from None
+    except ModelError as exc:
+        click.echo(exc.result.render(), err=True)
+        raise exit_with(EXIT_MODEL_ERRORS) from None
+    if model.kind != "robot":
+        click.echo(f"robosc: error: {file} is a library; CIF export needs a robot", err=True)
+        raise exit_with(EXIT_USAGE)
+    text = to_cif(build_network(model), Path(file).name)
+    try:
+        Path(output).write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
+    click.echo(f"wrote {output}")
+    raise exit_with(EXIT_OK)
