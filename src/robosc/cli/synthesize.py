@@ -67,10 +67,9 @@ def print_result(result: SynthesisResult) -> None:
         added = render(guard.added) if guard.added is not None else "-"
         table.add_row(guard.event.name, required, f"[bold]{added}[/]" if guard.added is not None else added)
     console.print(table)
-    added = len(result.added_guards)
     console.print(
         f"{result.reachable_states} reachable states in the controlled system; "
-        f"synthesis added a condition to {added} of {len(result.guards)} controllable events; "
+        f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
         f"{result.seconds * 1000:.1f} ms"
     )
 
@@ -93,7 +92,7 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
         raise exit_with(EXIT_MODEL_ERRORS) from None
     result = synthesize_model(model, "explicit" if explicit else "symbolic")
     if show_network:
-        click.echo(show_network(result.network))
+        click.echo(network_listing(result.network))
         click.echo()
     if as_json_output:
         click.echo(json.dumps(as_json(result), indent=2))

@@ -56,8 +56,8 @@ class _Builder:
         if isinstance(c, m.Message):
             event = self.event(c.name, c.direction is m.Direction.INCOMING, K.MESSAGE, communication=c)
             only = _location("idle", c.name, initial=True, marked=True)
-            kind = R.REQUEST if event.controllable else R.RESPONSE
-            self.result_events[(c, kind)] = event
+            result = R.REQUEST if event.controllable else R.RESPONSE
+            self.result_events[(c, result)] = event
             self.trigger[c] = event
             self.automata.append(
                 Automaton(c.name, AutomatonKind.MESSAGE, (only,), only, (Edge(only, only, event),), frozenset({event}))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from robosc.language import model as m
 from robosc.plant.network import Event, Network
@@ -62,6 +63,6 @@ class SynthesisResult:
     def allows(self, event: Event | str, state: NetworkState) -> bool:
         """Whether the supervisor lets ``event`` happen in ``state`` (of :attr:`network`)."""
         found = self.network.event(event) if isinstance(event, str) else event
-        supervisor = self.details.get("fixpoint") or self.details.get("supervisor")
+        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
         assert supervisor is not None
         return bool(supervisor.allows(found, state))

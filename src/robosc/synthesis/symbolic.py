@@ -45,8 +45,8 @@ class Fixpoint:
         """Whether ``event`` can happen in ``state`` under the supervisor."""
         here = self.state(state)
         if event.controllable:
-            return (here & self.allowed[event]) != self.enc.false
-        return (here & self.enabled[event] & ~self.bad) != self.enc.false
+            return bool((here & self.allowed[event]) != self.enc.false)
+        return bool((here & self.enabled[event] & ~self.bad) != self.enc.false)
 
     def state(self, state: NetworkState) -> BDD:
         network = self.enc.network
