@@ -10,6 +10,7 @@ import click
 from robosc.api import InputError, ModelError, SynthesisResult, load_model, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem
 from robosc.language.render import render
+from robosc.plant.show import show_network as network_listing
 
 
 def as_json(result: SynthesisResult) -> dict[str, Any]:
