@@ -20,6 +20,7 @@ from dd import cudd
 
 from robosc.language import model as m
 from robosc.plant.network import Automaton, Network
+from robosc.synthesis.ordering import interaction_order
 
 BDD = Any  # dd.cudd.Function
 Item = Automaton | m.Variable
@@ -54,14 +55,43 @@ class Field:
         return tuple(b + "'" for b in self.bits)
 
 
+@dataclass(frozen=True)
+class Relation:
+    """A transition relation that changes only ``bits``: every other bit keeps its value.
+
+    Partitioning this way keeps each relation small, and images rename and
+    quantify only the bits that change.
+    """
+
+    bdd: BDD
+    bits: list[str]
+    primed: list[str]
+
+    @property
+    def to_primed(self) -> dict[str, str]:
+        return dict(zip(self.bits, self.primed, strict=True))
+
+    @property
+    def from_primed(self) -> dict[str, str]:
+        return dict(zip(self.primed, self.bits, strict=True))
+
+    def restrict(self, condition: BDD) -> Relation:
+        """The same relation, only from states where ``condition`` holds."""
+        return Relation(self.bdd & condition, self.bits, self.primed)
+
+
 class Encoding:
     def __init__(self, network: Network) -> None:
         self.network = network
         self.bdd = cudd.BDD()
         self.fields: dict[int, Field] = {}
         order: list[str] = []
-        items: list[tuple[Item, str, Sequence[Any]]] = [(a, a.name, a.locations) for a in network.automata]
-        items += [(v, f"{v.owner}.{v.name}", network.domains[v]) for v in network.variables]
+        items: list[tuple[Item, str, Sequence[Any]]] = [
+            (item, item.name, item.locations)
+            if isinstance(item, Automaton)
+            else (item, f"{item.owner}.{item.name}", network.domains[item])
+            for item in interaction_order(network)
+        ]
         for index, (item, name, values) in enumerate(items):
             width = max(0, (len(values) - 1).bit_length())
             bits = tuple(f"b{index}_{k}" for k in range(width))
@@ -116,6 +146,16 @@ class Encoding:
     def valid(self, primed: bool = False) -> BDD:
         return self._valid[primed]
 
+    def valid_fields(self, fields: Sequence[Field], primed: bool) -> BDD:
+        result = self.true
+        for field in fields:
+            if len(field.values) < 2 ** len(field.bits):
+                allowed = self.false
+                for index in range(len(field.values)):
+                    allowed |= self.code(field, index, primed)
+                result &= allowed
+        return result
+
     def unchanged(self, field: Field) -> BDD:
         result = self.true
         for bit in field.bits:
@@ -129,13 +169,26 @@ class Encoding:
     def unprime(self, u: BDD) -> BDD:
         return self.bdd.let(self.from_primed, u) if self.from_primed else u
 
-    def pre(self, relation: BDD, target: BDD) -> BDD:
+    def pre(self, relation: Relation, target: BDD) -> BDD:
         """States with a transition in ``relation`` into ``target``."""
-        return cudd.and_exists(relation, self.prime(target), self.xp_vars) if self.xp_vars else relation & target
+        if not relation.primed:
+            return relation.bdd & target
+        renamed = self.bdd.let(relation.to_primed, target)
+        return cudd.and_exists(relation.bdd, renamed, relation.primed)
 
-    def post(self, relation: BDD, source: BDD) -> BDD:
+    def post(self, relation: Relation, source: BDD) -> BDD:
         """States reached by a transition in ``relation`` from ``source``."""
-        return self.unprime(cudd.and_exists(relation, source, self.x_vars)) if self.x_vars else relation & source
+        if not relation.bits:
+            return relation.bdd & source
+        return self.bdd.let(relation.from_primed, cudd.and_exists(relation.bdd, source, relation.bits))
+
+    def enabled(self, relation: Relation) -> BDD:
+        """States where a transition in ``relation`` can happen."""
+        return cudd.and_exists(relation.bdd, self.true, relation.primed) if relation.primed else relation.bdd
+
+    def relation(self, bdd: BDD, fields: Sequence[Field]) -> Relation:
+        bits = [b for f in fields for b in f.bits]
+        return Relation(bdd, bits, [b + "'" for b in bits])
 
     def count(self, states: BDD) -> int:
         return int(self.bdd.count(states, nvars=len(self.x_vars))) if self.x_vars else int(states == self.true)

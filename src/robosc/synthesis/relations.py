@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+from robosc.language import model as m
 from robosc.plant.network import Automaton, Edge, Event, Network
-from robosc.synthesis.encoding import BDD, Encoding
+from robosc.synthesis.encoding import BDD, Encoding, Relation
 
 
 def edge_relation(enc: Encoding, automaton: Automaton, edge: Edge) -> BDD:
@@ -29,15 +30,17 @@ def edge_relation(enc: Encoding, automaton: Automaton, edge: Edge) -> BDD:
     return relation
 
 
-def owned_variables(network: Network, automaton: Automaton) -> list:  # type: ignore[type-arg]
+def owned_variables(network: Network, automaton: Automaton) -> list[m.Variable]:
     if automaton.component is None:
         return []
     return [v for v in network.variables if v.owner == automaton.component.name]
 
 
-def event_relation(enc: Encoding, event: Event) -> BDD:
-    """All automata that know ``event`` take one of their edges on it; the others stay."""
-    relation = enc.valid() & enc.valid(primed=True)
+def event_relation(enc: Encoding, event: Event) -> Relation:
+    """All automata that know ``event`` take one of their edges on it; everything
+    else keeps its value (implicitly: the relation covers only the fields that change)."""
+    relation = enc.true
+    fields = []
     for automaton in enc.network.automata:
         if event in automaton.alphabet:
             choice = enc.false
@@ -45,8 +48,7 @@ def event_relation(enc: Encoding, event: Event) -> BDD:
                 if edge.event is event:
                     choice |= edge_relation(enc, automaton, edge)
             relation &= choice
-        else:
-            relation &= enc.unchanged(enc.field(automaton))
-            for variable in owned_variables(enc.network, automaton):
-                relation &= enc.unchanged(enc.field(variable))
-    return relation
+            fields.append(enc.field(automaton))
+            fields += [enc.field(v) for v in owned_variables(enc.network, automaton)]
+    relation &= enc.valid_fields(fields, primed=True)
+    return enc.relation(relation, fields)
