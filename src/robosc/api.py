@@ -126,14 +126,15 @@ def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
     ``result.explanation`` says why synthesis failed.
     """
     from robosc.plant import build_network
-    from robosc.synthesis import synthesize, synthesize_explicit
+    from robosc.synthesis.explicit import synthesize_explicit
+    from robosc.synthesis.symbolic import synthesize_symbolic
 
     network = build_network(model)
     if method == "explicit":
         return synthesize_explicit(network)
     if method != "symbolic":
         raise ValueError(f"unknown synthesis method '{method}' (symbolic or explicit)")
-    return synthesize(network)
+    return synthesize_symbolic(network)
 
 
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:
