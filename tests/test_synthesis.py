@@ -235,3 +235,33 @@ def test_cli_synthesize_model_error_exits_one(tmp_path, capsys):
     model.write_text("robot R { requirement x needs true }")
     assert main(["synthesize", str(model)]) == 1
     assert "unknown communication 'x'" in capsys.readouterr().err
+
+
+def test_api_answers_whether_an_event_is_allowed():
+    from robosc.api import synthesize_file
+
+    result = synthesize_file(EXAMPLES / "maze_solver.rscd")
+    wall_ahead = result.state({"Platform": "ready", "Distance.front": "wall_front"})
+    assert result.allows("turn_left", wall_ahead)
+    assert not result.allows("movement", wall_ahead)
+    turning = result.state({"Platform": "turning", "Distance.front": "wall_front"})
+    assert not result.allows("turn_left", turning)
+    assert result.allows("rotate_done", turning)
+    with pytest.raises(KeyError):
+        result.state({"Platform": "flying"})
+    with pytest.raises(KeyError):
+        result.state({"Nobody": "x"})
+
+
+def test_explicit_method_from_the_cli(capsys):
+    assert main(["synthesize", "--explicit", "--json", str(EXAMPLES / "maze_solver.rscd")]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["method"] == "explicit" and data["reachable_states"] == 128
+
+
+def test_show_network_lists_plants_and_requirements(capsys):
+    assert main(["synthesize", "--show-network", str(EXAMPLES / "maze_solver.rscd")]) == 0
+    out = capsys.readouterr().out
+    assert "uncontrollable scan_front" in out and "component Platform:" in out
+    assert "--turn_left--> turning" in out
+    assert "turn_left only if Platform.ready and Distance.front = wall_front" in out

@@ -8,8 +8,6 @@ import click
 
 from robosc.api import InputError, ModelError, load_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with, include_option, input_problem
-from robosc.codegen.cif import to_cif
-from robosc.plant import build_network
 
 
 @click.command()
@@ -28,6 +26,9 @@ def cif(file: str, output: str, include: tuple[str, ...]) -> None:
     if model.kind != "robot":
         click.echo(f"robosc: error: {file} is a library; CIF export needs a robot", err=True)
         raise exit_with(EXIT_USAGE)
+    from robosc.codegen.cif import to_cif  # jinja2 only when this command runs
+    from robosc.plant import build_network
+
     text = to_cif(build_network(model), Path(file).name)
     try:
         Path(output).write_text(text, encoding="utf-8")

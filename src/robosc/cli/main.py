@@ -10,6 +10,14 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
+# dd imports networkx if it can (only for exporting BDDs as graphs, which robosc
+# never does); that import alone takes about 0.15 s of every synthesis command.
+# dd works without it, so the robosc command keeps it out of its own process.
+# (Only here, in the command's entry point: a program that imports robosc as a
+# library keeps its networkx.)
+if "networkx" not in sys.modules:
+    sys.modules["networkx"] = None  # type: ignore[assignment]
+
 import click
 
 from robosc.cli.check import check

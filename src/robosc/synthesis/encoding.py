@@ -84,6 +84,9 @@ class Encoding:
     def __init__(self, network: Network) -> None:
         self.network = network
         self.bdd = cudd.BDD()
+        # The interaction order is kept: on the benchmark families CUDD's dynamic
+        # reordering (sifting) cost 1.2x to 4x the time it saved.
+        self.bdd.configure(reordering=False)
         self.fields: dict[int, Field] = {}
         order: list[str] = []
         items: list[tuple[Item, str, Sequence[Any]]] = [

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -59,6 +60,37 @@ class SynthesisResult:
     def added_guards(self) -> tuple[EventGuard, ...]:
         """The controllable events on which synthesis added a condition."""
         return tuple(g for g in self.guards if g.added is not None)
+
+    def state(self, assignment: Mapping[str, object] | None = None) -> NetworkState:
+        """A network state from names: ``{"Platform": "turning", "Distance.front": "wall_front"}``
+        (automaton -> location, ``Component.variable`` -> value); the rest as initially."""
+        assignment = dict(assignment or {})
+        network = self.network
+        locations = []
+        for automaton in network.automata:
+            wanted = assignment.pop(automaton.name, None)
+            if wanted is None:
+                locations.append(automaton.initial)
+                continue
+            found = next((loc for loc in automaton.locations if loc.name == wanted), None)
+            if found is None:
+                raise KeyError(f"{automaton.name} has no location '{wanted}'")
+            locations.append(found)
+        values = []
+        for variable in network.variables:
+            key = f"{variable.owner}.{variable.name}"
+            if key not in assignment:
+                values.append(network.initial_values[variable])
+                continue
+            wanted = assignment.pop(key)
+            domain = network.domains[variable]
+            found_value = next((v for v in domain if v == wanted or getattr(v, "name", None) == wanted), None)
+            if found_value is None:
+                raise KeyError(f"{key} cannot be {wanted!r}")
+            values.append(found_value)
+        if assignment:
+            raise KeyError(f"no automaton or synthesis variable named {', '.join(sorted(assignment))}")
+        return NetworkState(tuple(locations), tuple(values))
 
     def allows(self, event: Event | str, state: NetworkState) -> bool:
         """Whether the supervisor lets ``event`` happen in ``state`` (of :attr:`network`)."""
