@@ -265,3 +265,8 @@ def test_show_network_lists_plants_and_requirements(capsys):
     assert "uncontrollable scan_front" in out and "component Platform:" in out
     assert "--turn_left--> turning" in out
     assert "turn_left only if Platform.ready and Distance.front = wall_front" in out
+
+
+def test_cli_synthesize_a_library_is_a_usage_error(capsys):
+    assert main(["synthesize", str(EXAMPLES / "emergency_stop.rscd")]) == 2
+    assert "is a library; synthesis needs a robot" in capsys.readouterr().err

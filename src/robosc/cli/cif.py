@@ -6,8 +6,7 @@ from pathlib import Path
 
 import click
 
-from robosc.api import InputError, ModelError, load_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with, include_option, input_problem
+from robosc.cli.common import EXIT_OK, exit_with, include_option, input_problem, load_robot
 
 
 @click.command()
@@ -16,16 +15,7 @@ from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with,
 @include_option
 def cif(file: str, output: str, include: tuple[str, ...]) -> None:
     """Write the model's plants and requirements as CIF 3 text (for Eclipse ESCET)."""
-    try:
-        model = load_model(file, include)
-    except InputError as exc:
-        raise input_problem(str(exc)) from None
-    except ModelError as exc:
-        click.echo(exc.result.render(), err=True)
-        raise exit_with(EXIT_MODEL_ERRORS) from None
-    if model.kind != "robot":
-        click.echo(f"robosc: error: {file} is a library; CIF export needs a robot", err=True)
-        raise exit_with(EXIT_USAGE)
+    model = load_robot(file, include, "CIF export")
     from robosc.codegen.cif import to_cif  # jinja2 only when this command runs
     from robosc.plant import build_network
 

@@ -7,6 +7,8 @@ from typing import Any
 
 import click
 
+from robosc.language.model import Model
+
 EXIT_OK = 0
 EXIT_MODEL_ERRORS = 1
 EXIT_USAGE = 2
@@ -32,3 +34,20 @@ def exit_with(code: int) -> click.exceptions.Exit:
 def input_problem(message: str) -> click.exceptions.Exit:
     click.echo(f"robosc: error: {message}", err=True)
     return exit_with(EXIT_USAGE)
+
+
+def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
+    """The checked robot model in ``file``, or the command ends: exit 2 when the file
+    cannot be read or holds a library, exit 1 (diagnostics printed) when it has errors."""
+    from robosc.api import InputError, ModelError, load_model
+
+    try:
+        model = load_model(file, include)
+    except InputError as exc:
+        raise input_problem(str(exc)) from None
+    except ModelError as exc:
+        click.echo(exc.result.render(), err=True)
+        raise exit_with(EXIT_MODEL_ERRORS) from None
+    if model.kind != "robot":
+        raise input_problem(f"{file} is a library; {purpose} needs a robot")
+    return model

@@ -7,8 +7,8 @@ from typing import Any
 
 import click
 
-from robosc.api import InputError, ModelError, SynthesisResult, load_model, synthesize_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem
+from robosc.api import SynthesisResult, synthesize_model
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
 
@@ -84,13 +84,7 @@ def print_result(result: SynthesisResult) -> None:
 def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explicit: bool, show_network: bool) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
-    try:
-        model = load_model(file, include)
-    except InputError as exc:
-        raise input_problem(str(exc)) from None
-    except ModelError as exc:
-        click.echo(exc.result.render(), err=True)
-        raise exit_with(EXIT_MODEL_ERRORS) from None
+    model = load_robot(file, include, "synthesis")
     result = synthesize_model(model, "explicit" if explicit else "symbolic")
     if show_network:
         click.echo(network_listing(result.network))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from robosc.codegen.templating import environment
 from robosc.language import model as m
+from robosc.language.render import literal
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, EventKind, Network
 
 # Reserved words of CIF 3; a name that is one gets CIF's '$' escape.
@@ -182,7 +183,7 @@ def expression(e: m.Expr) -> str:
         if isinstance(e.value, bool):
             return "true" if e.value else "false"
         if isinstance(e.value, str):
-            return '"' + e.value.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+            return literal(e.value)  # CIF escapes strings as RoboSC does
         return repr(e.value)
     if isinstance(e, m.EnumLiteral):
         return name(e.value.name)

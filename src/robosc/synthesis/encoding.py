@@ -11,8 +11,7 @@ a map from each value they can take to the BDD of where they take it.
 
 from __future__ import annotations
 
-import operator
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -20,25 +19,11 @@ from dd import cudd
 
 from robosc.language import model as m
 from robosc.plant.network import Automaton, Network
+from robosc.synthesis.evaluate import ARITHMETIC, COMPARE
 from robosc.synthesis.ordering import interaction_order
 
 BDD = Any  # dd.cudd.Function
 Item = Automaton | m.Variable
-
-_COMPARE: dict[str, Callable[[Any, Any], bool]] = {
-    "=": operator.eq,
-    "!=": operator.ne,
-    "<": operator.lt,
-    "<=": operator.le,
-    ">": operator.gt,
-    ">=": operator.ge,
-}
-_ARITHMETIC: dict[str, Callable[[Any, Any], Any]] = {
-    "+": operator.add,
-    "-": operator.sub,
-    "*": operator.mul,
-    "/": operator.truediv,
-}
 
 
 @dataclass(frozen=True)
@@ -109,7 +94,8 @@ class Encoding:
         self.from_primed = dict(zip(self.xp_vars, self.x_vars, strict=True))
         self.true = self.bdd.true
         self.false = self.bdd.false
-        self._valid = {False: self._valid_codes(False), True: self._valid_codes(True)}
+        every = list(self.fields.values())
+        self._valid = {False: self.valid_fields(every, False), True: self.valid_fields(every, True)}
 
     # -- fields and codes -----------------------------------------------------------
     def field(self, item: Item) -> Field:
@@ -135,16 +121,6 @@ class Encoding:
     def holds(self, variable: m.Variable, value: Any, primed: bool = False) -> BDD:
         field = self.field(variable)
         return self.code(field, field.values.index(value), primed)
-
-    def _valid_codes(self, primed: bool) -> BDD:
-        result = self.true
-        for field in self.fields.values():
-            if len(field.values) < 2 ** len(field.bits):
-                allowed = self.false
-                for index in range(len(field.values)):
-                    allowed |= self.code(field, index, primed)
-                result &= allowed
-        return result
 
     def valid(self, primed: bool = False) -> BDD:
         return self._valid[primed]
@@ -227,11 +203,11 @@ class Encoding:
             if e.op == "and":
                 return left & right
             return left | right if e.op == "or" else (~left) | right
-        if isinstance(e, m.Binary) and e.op in _COMPARE:
+        if isinstance(e, m.Binary) and e.op in COMPARE:
             if e.op in ("=", "!=") and _is_boolean(e.left):
                 same = self.boolean(e.left).equiv(self.boolean(e.right))
                 return same if e.op == "=" else ~same
-            compare = _COMPARE[e.op]
+            compare = COMPARE[e.op]
             result = self.false
             for a, when_a in self.values(e.left).items():
                 for b, when_b in self.values(e.right).items():
@@ -252,8 +228,8 @@ class Encoding:
             return {value: self.code(field, i) for i, value in enumerate(field.values)}
         if isinstance(e, m.Unary) and e.op == "-":
             return _merge((-v, u) for v, u in self.values(e.operand).items())
-        if isinstance(e, m.Binary) and e.op in _ARITHMETIC:
-            apply = _ARITHMETIC[e.op]
+        if isinstance(e, m.Binary) and e.op in ARITHMETIC:
+            apply = ARITHMETIC[e.op]
             pairs = []
             for a, when_a in self.values(e.left).items():
                 for b, when_b in self.values(e.right).items():

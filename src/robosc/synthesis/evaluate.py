@@ -8,16 +8,19 @@ from typing import Any
 
 from robosc.language import model as m
 
-_BINARY: dict[str, Callable[[Any, Any], Any]] = {
+COMPARE: dict[str, Callable[[Any, Any], bool]] = {
     "=": operator.eq,
     "!=": operator.ne,
     "<": operator.lt,
     "<=": operator.le,
     ">": operator.gt,
     ">=": operator.ge,
+}
+ARITHMETIC: dict[str, Callable[[Any, Any], Any]] = {
     "+": operator.add,
     "-": operator.sub,
     "*": operator.mul,
+    "/": operator.truediv,
 }
 
 
@@ -45,9 +48,7 @@ def evaluate(e: m.Expr, locations: frozenset[m.State] | set[m.State], values: Ma
         if e.op == "=>":
             return (not evaluate(e.left, locations, values)) or evaluate(e.right, locations, values)
         left, right = evaluate(e.left, locations, values), evaluate(e.right, locations, values)
-        if e.op == "/":
-            if right == 0:
-                raise Undefined("division by zero")
-            return left / right
-        return _BINARY[e.op](left, right)
+        if e.op == "/" and right == 0:
+            raise Undefined("division by zero")
+        return COMPARE[e.op](left, right) if e.op in COMPARE else ARITHMETIC[e.op](left, right)
     raise Undefined(f"cannot evaluate {type(e).__name__}")
