@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from lark import Token, Transformer, v_args
+from lark import Token, Tree
 from lark.tree import Meta
 
 from robosc.language import syntax as s
@@ -38,13 +38,27 @@ def _unescape_string(raw: str) -> str:
     return _ESCAPE.sub(lambda m: _ESCAPES.get(m.group(1), m.group(1)), raw[1:-1])
 
 
-@v_args(meta=True)
-class SyntaxBuilder(Transformer[Token, s.FileSyntax]):
+class SyntaxBuilder:
+    """One method per rule or alias, called with the node's position and its built children."""
+
     def __init__(self, path: str, comments: tuple[s.Comment, ...]) -> None:
-        super().__init__()
         self.path = path
         self.comments = comments
         self._depth: dict[int, int] = {}
+
+    def build(self, tree: Tree[Token]) -> s.FileSyntax:
+        """Build bottom-up without recursion (no depth limit from Python's stack)."""
+        built: dict[int, Any] = {}
+        methods: dict[str, Any] = {}
+        for subtree in tree.iter_subtrees():
+            children = [built.pop(id(c)) if isinstance(c, Tree) else c for c in subtree.children]
+            rule = str(subtree.data)
+            method = methods.get(rule)
+            if method is None:
+                method = methods[rule] = getattr(self, rule)
+            built[id(subtree)] = method(subtree.meta, children)
+        result: s.FileSyntax = built[id(tree)]
+        return result
 
     # -- helpers -------------------------------------------------------------
     def _span(self, meta: Meta) -> Span:
