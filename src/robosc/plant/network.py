@@ -115,12 +115,6 @@ class Network:
                 return automaton
         raise KeyError(location.name)
 
-    def owner_of(self, variable: m.Variable) -> Automaton:
-        for automaton in self.automata:
-            if automaton.component is not None and automaton.component.name == variable.owner:
-                return automaton
-        raise KeyError(variable.name)
-
     def requirements_on(self, event: Event) -> Iterator[Requirement]:
         return (r for r in self.requirements if r.event is event)
 

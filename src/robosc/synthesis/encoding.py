@@ -89,9 +89,6 @@ class Encoding:
         if order:
             self.bdd.declare(*order)
         self.x_vars = [b for f in self.fields.values() for b in f.bits]
-        self.xp_vars = [b + "'" for b in self.x_vars]
-        self.to_primed = dict(zip(self.x_vars, self.xp_vars, strict=True))
-        self.from_primed = dict(zip(self.xp_vars, self.x_vars, strict=True))
         self.true = self.bdd.true
         self.false = self.bdd.false
         every = list(self.fields.values())
@@ -142,12 +139,6 @@ class Encoding:
         return result
 
     # -- state sets ------------------------------------------------------------------------
-    def prime(self, u: BDD) -> BDD:
-        return self.bdd.let(self.to_primed, u) if self.to_primed else u
-
-    def unprime(self, u: BDD) -> BDD:
-        return self.bdd.let(self.from_primed, u) if self.from_primed else u
-
     def pre(self, relation: Relation, target: BDD) -> BDD:
         """States with a transition in ``relation`` into ``target``."""
         if not relation.primed:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from robosc.language.render import render
-from robosc.plant.network import AutomatonKind, Event
+from robosc.plant.network import AutomatonKind
 from robosc.synthesis.encoding import BDD
 from robosc.synthesis.result import Explanation, Step
 from robosc.synthesis.state import NetworkState, describe
@@ -71,7 +71,7 @@ def _reason(fp: Any, state: NetworkState) -> str:
         for requirement in network.requirements_on(event):
             if (where & ~enc.boolean(requirement.condition)) != enc.false:
                 return (
-                    f"in state [{describe(network, state)}] the uncontrollable event '{_name(event)}' can happen, "
+                    f"in state [{describe(network, state)}] the uncontrollable event '{event.name}' can happen, "
                     f"but {requirement.description} does not hold there ({render(requirement.condition)} is false); "
                     "a supervisor cannot prevent uncontrollable events, so it must keep the system out of this state, "
                     "and it cannot"
@@ -86,7 +86,3 @@ def _reason(fp: Any, state: NetworkState) -> str:
         f"the system would block: from state [{describe(network, state)}]{stuck} no sequence of events that the "
         "requirements allow leads to a state where every component is in a marked state"
     )
-
-
-def _name(event: Event) -> str:
-    return event.name

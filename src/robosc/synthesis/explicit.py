@@ -14,17 +14,11 @@ from typing import Any
 from robosc.plant.network import Edge, Event, Network
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.result import SynthesisResult
-from robosc.synthesis.state import NetworkState
+from robosc.synthesis.state import NetworkState, initial_state
 
 
 class TooManyStates(Exception):
     pass
-
-
-def initial_state(network: Network) -> NetworkState:
-    return NetworkState(
-        tuple(a.initial for a in network.automata), tuple(network.initial_values[v] for v in network.variables)
-    )
 
 
 def _holds(edge_guard: Any, locations: set[Any], values: dict[Any, Any]) -> bool:

@@ -15,6 +15,12 @@ class NetworkState:
     values: tuple[object, ...]  # in the order of network.variables
 
 
+def initial_state(network: Network) -> NetworkState:
+    return NetworkState(
+        tuple(a.initial for a in network.automata), tuple(network.initial_values[v] for v in network.variables)
+    )
+
+
 def describe(network: Network, state: NetworkState) -> str:
     """A state as people read it: component states, variables, busy communication."""
     parts = []

@@ -53,12 +53,6 @@ class Fixpoint:
         return self.enc.state(locations, values)
 
 
-def initial_state(network: Network) -> NetworkState:
-    return NetworkState(
-        tuple(a.initial for a in network.automata), tuple(network.initial_values[v] for v in network.variables)
-    )
-
-
 def _closure(enc: Encoding, start: BDD, relations: list[Relation]) -> BDD:
     """``start`` and every state with a path into it over ``relations``.
 
