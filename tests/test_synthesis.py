@@ -270,3 +270,9 @@ def test_show_network_lists_plants_and_requirements(capsys):
 def test_cli_synthesize_a_library_is_a_usage_error(capsys):
     assert main(["synthesize", str(EXAMPLES / "emergency_stop.rscd")]) == 2
     assert "is a library; synthesis needs a robot" in capsys.readouterr().err
+
+
+def test_piped_table_keeps_each_condition_on_one_line(capsys):
+    assert main(["synthesize", str(EXAMPLES / "maze_solver.rscd")]) == 0
+    out = capsys.readouterr().out
+    assert "Platform.ready and Distance.front = wall_front" in out

@@ -45,6 +45,10 @@ def print_result(result: SynthesisResult) -> None:
     from rich.table import Table
 
     console = Console(highlight=False)
+    if not console.is_terminal:
+        # Piped to a file or another program: no terminal width to respect, so keep
+        # each condition on one line instead of wrapping it at 80 columns.
+        console = Console(highlight=False, width=max(console.width, 200))
     name = result.network.model.name
     if not result.ok:
         explanation = result.explanation
