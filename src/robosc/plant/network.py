@@ -109,12 +109,6 @@ class Network:
     def uncontrollable(self) -> tuple[Event, ...]:
         return tuple(e for e in self.events if not e.controllable)
 
-    def automaton_of(self, location: m.State) -> Automaton:
-        for automaton in self.automata:
-            if location in automaton.locations:
-                return automaton
-        raise KeyError(location.name)
-
     def requirements_on(self, event: Event) -> Iterator[Requirement]:
         return (r for r in self.requirements if r.event is event)
 

@@ -89,6 +89,13 @@ class Encoding:
         if order:
             self.bdd.declare(*order)
         self.x_vars = [b for f in self.fields.values() for b in f.bits]
+        # location -> (its automaton's field, its code), for the many location references
+        self._locations = {
+            id(location): (field, index)
+            for field in self.fields.values()
+            if isinstance(field.item, Automaton)
+            for index, location in enumerate(field.values)
+        }
         self.true = self.bdd.true
         self.false = self.bdd.false
         every = list(self.fields.values())
@@ -112,8 +119,8 @@ class Encoding:
         return {bit: bool((index >> k) & 1) for k, bit in enumerate(names)}
 
     def at(self, location: m.State, primed: bool = False) -> BDD:
-        field = self.field(self.network.automaton_of(location))
-        return self.code(field, field.values.index(location), primed)
+        field, index = self._locations[id(location)]
+        return self.code(field, index, primed)
 
     def holds(self, variable: m.Variable, value: Any, primed: bool = False) -> BDD:
         field = self.field(variable)

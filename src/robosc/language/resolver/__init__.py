@@ -89,6 +89,7 @@ class _Resolver:
         self.scope = scope_of(file, self.reporter)
         self.entries: dict[str, _Entry] = {}
         self.order: list[_Entry] = []
+        self._communications: dict[str, m.Communication] | None = None
 
     # -- phase 1 -------------------------------------------------------------------
     def declare_components(self) -> None:
@@ -154,11 +155,12 @@ class _Resolver:
         return f"component '{name}' of library '{entry.library_name}' is not imported into this robot"
 
     def _communication(self, name: str) -> m.Communication | None:
-        for entry in self.order:
-            for communication in entry.tables.communications:
-                if communication.name == name:
-                    return communication
-        return None
+        if self._communications is None:  # built once every component is declared
+            self._communications = {}
+            for entry in self.order:
+                for communication in entry.tables.communications:
+                    self._communications.setdefault(communication.name, communication)
+        return self._communications.get(name)
 
     def _communication_names(self) -> list[str]:
         return [c.name for e in self.order for c in e.tables.communications]
