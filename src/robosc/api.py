@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, TextIO
 
 from robosc.language.checks import run_checks
 from robosc.language.diagnostics import Diagnostic, render_text, sort_key
@@ -22,6 +23,10 @@ from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
 from robosc.synthesis.result import SynthesisResult
 
+if TYPE_CHECKING:
+    from robosc.runtime.plan import Plan
+    from robosc.runtime.simulator import Simulator
+
 __all__ = [
     "CheckResult",
     "InputError",
@@ -31,6 +36,9 @@ __all__ = [
     "check_text",
     "format_text",
     "load_model",
+    "plan_supervisor",
+    "simulator",
+    "supervisor_module",
     "synthesize_file",
     "synthesize_model",
 ]
@@ -140,3 +148,26 @@ def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:
     """Load, check and synthesize a model file (raises :class:`ModelError` on model errors)."""
     return synthesize_model(load_model(path, search_paths))
+
+
+def plan_supervisor(result: SynthesisResult) -> Plan:
+    """Lay out a successful synthesis result for code generation and simulation.
+    Raises :class:`robosc.runtime.plan.PlanError` (with the model span) when the model
+    cannot run on ROS as it is, e.g. a service that links no interface."""
+    from robosc.runtime.plan import plan
+
+    return plan(result)
+
+
+def supervisor_module(result: SynthesisResult) -> str:
+    """The stand-alone Python supervisor module (Python 3.8+, standard library only)."""
+    from robosc.runtime.module import render_module
+
+    return render_module(plan_supervisor(result))
+
+
+def simulator(result: SynthesisResult, seed: int | None = None, log: TextIO | None = None) -> Simulator:
+    """A simulator running the generated supervisor, checking each step against ``result``."""
+    from robosc.runtime.simulator import Simulator
+
+    return Simulator(result, plan_supervisor(result), seed=seed, log=log)

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from robosc.language.model import Model
+
+if TYPE_CHECKING:
+    from robosc.runtime.plan import Plan
+    from robosc.synthesis.result import SynthesisResult
 
 EXIT_OK = 0
 EXIT_MODEL_ERRORS = 1
@@ -51,3 +55,26 @@ def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
     if model.kind != "robot":
         raise input_problem(f"{file} is a library; {purpose} needs a robot")
     return model
+
+
+def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[SynthesisResult, Plan]:
+    """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
+    printed) when no supervisor exists or the model cannot run as it is."""
+    from robosc.api import plan_supervisor, synthesize_model
+    from robosc.cli.synthesize import print_result
+    from robosc.runtime.plan import PlanError
+
+    model = load_robot(file, include, purpose)
+    result = synthesize_model(model)
+    if not result.ok:
+        print_result(result)
+        raise exit_with(EXIT_MODEL_ERRORS)
+    try:
+        return result, plan_supervisor(result)
+    except PlanError as exc:
+        from robosc.api import check_file
+        from robosc.language.diagnostics import error, render_text
+
+        sources = check_file(file, include).sources
+        click.echo(render_text(error(exc.span, str(exc), "runtime"), sources), err=True)  # type: ignore[arg-type]
+        raise exit_with(EXIT_MODEL_ERRORS) from None

@@ -23,6 +23,7 @@ import click
 from robosc.cli.check import check
 from robosc.cli.cif import cif
 from robosc.cli.fmt import fmt
+from robosc.cli.simulate import simulate
 from robosc.cli.synthesize import synthesize
 
 EXIT_INTERNAL = 3
@@ -38,6 +39,7 @@ cli.add_command(check)
 cli.add_command(fmt)
 cli.add_command(synthesize)
 cli.add_command(cif)
+cli.add_command(simulate)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,4 +1,4 @@
-"""The Jinja2 environment shared by the generators."""
+"""The Jinja2 environments shared by the generators (one per package holding templates)."""
 
 from __future__ import annotations
 
@@ -7,13 +7,23 @@ from functools import lru_cache
 import jinja2
 
 
-@lru_cache(maxsize=1)
-def environment() -> jinja2.Environment:
-    return jinja2.Environment(
-        loader=jinja2.PackageLoader("robosc.codegen", "templates"),
+@lru_cache(maxsize=4)
+def environment(package: str = "robosc.codegen") -> jinja2.Environment:
+    """Templates under ``<package>/templates``; strict about undefined names."""
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader(package, "templates"),
         undefined=jinja2.StrictUndefined,
         keep_trailing_newline=True,
         trim_blocks=True,
         lstrip_blocks=True,
-        autoescape=False,  # generated code, not HTML: every model string is escaped by the generator
+        autoescape=False,  # generated code, not HTML: every model string goes through a filter below
     )
+    env.filters["py"] = _python_literal
+    return env
+
+
+def _python_literal(value: object) -> str:
+    """A string (or number) from the model as a Python literal: ``repr`` escapes it."""
+    if isinstance(value, str | int | float | bool) or value is None:
+        return repr(value)
+    raise TypeError(f"no Python literal for {value!r}")

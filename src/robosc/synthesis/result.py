@@ -98,3 +98,12 @@ class SynthesisResult:
         supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
         assert supervisor is not None
         return bool(supervisor.allows(found, state))
+
+    def controlled(self, state: NetworkState) -> bool:
+        """Whether ``state`` lies inside the controlled behaviour (every requirement can be
+        kept from it and a marked state stays reachable)."""
+        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
+        assert supervisor is not None
+        if hasattr(supervisor, "controlled"):
+            return bool(supervisor.controlled(state))
+        return state not in supervisor.bad

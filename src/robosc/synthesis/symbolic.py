@@ -46,6 +46,11 @@ class Fixpoint:
             return bool((here & self.allowed[event]) != self.enc.false)
         return bool((here & self.enabled[event] & ~self.bad) != self.enc.false)
 
+    def controlled(self, state: NetworkState) -> bool:
+        """Whether ``state`` is inside the controlled behaviour: no requirement can be
+        forced to break from it and a marked state stays reachable."""
+        return bool((self.state(state) & self.bad) == self.enc.false)
+
     def state(self, state: NetworkState) -> BDD:
         network = self.enc.network
         locations = dict(zip(network.automata, state.locations, strict=True))

@@ -1,0 +1,156 @@
+"""``robosc simulate FILE [--script F | --random N --seed S] [--log F]``."""
+
+from __future__ import annotations
+
+import random
+import sys
+from typing import TYPE_CHECKING, TextIO
+
+import click
+
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with, include_option, input_problem, supervised
+
+if TYPE_CHECKING:
+    from robosc.runtime.simulator import Outcome, Simulator
+
+HELP = """commands:
+  tick [N]              run N controller cycles (default 1)
+  EVENT                 perform a controllable event, if the supervisor allows it
+  EVENT [DATA]          deliver an uncontrollable event; DATA is JSON ({"ranges": [0.5]}, 0.3, true)
+                        or, for enum-typed data, an enum value (wall_front)
+  expect NAME VALUE     stop unless an automaton / variable has this value
+  state                 show the state again
+  help, quit"""
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@click.option("--script", type=click.Path(dir_okay=False), help="Run the commands in this file, one per line.")
+@click.option("--random", "steps", type=click.IntRange(min=0), help="Run N random steps (ticks and robot events).")
+@click.option("--seed", type=int, default=None, help="Seed for the controller's choices and --random.")
+@click.option("--log", "log_path", type=click.Path(dir_okay=False), help="Write every event as JSON Lines to this file.")
+@click.option("--quiet", is_flag=True, help="Print only problems and the final state.")
+@include_option
+def simulate(
+    file: str, script: str | None, steps: int | None, seed: int | None, log_path: str | None, quiet: bool, include: tuple[str, ...]
+) -> None:
+    """Run the generated supervisor without ROS, checking every step.
+
+    After each event the requirements must hold and a marked state must stay
+    reachable; the simulation stops with a report (exit 1) if not."""
+    if script is not None and steps is not None:
+        raise input_problem("use either --script or --random, not both")
+    result, plan = supervised(file, include, "simulation")
+    from robosc.runtime.simulator import Simulator, Violation
+
+    log: TextIO | None = None
+    if log_path is not None:
+        try:
+            log = open(log_path, "w", encoding="utf-8")  # noqa: SIM115 (closed below)
+        except OSError as exc:
+            raise input_problem(f"{log_path}: cannot write: {exc.strerror or exc}") from None
+    sim = Simulator(result, plan, seed=seed, log=log)
+    try:
+        if script is not None:
+            code = _scripted(sim, script, quiet)
+        elif steps is not None:
+            code = _random(sim, steps, seed, quiet)
+        else:
+            code = _interactive(sim)
+    except Violation as violation:
+        click.echo(f"robosc: violation at {violation}", err=True)
+        code = EXIT_MODEL_ERRORS
+    finally:
+        if log is not None:
+            log.close()
+    if code == EXIT_OK:
+        _show_state(sim)
+    raise exit_with(code) from None
+
+
+def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
+    if not quiet:
+        for event in outcome.events:
+            click.echo(f"  {sim.step:>4}  {event}")
+        for message in outcome.messages:
+            click.echo(f"        {message}")
+    if not quiet:
+        for warning in sim.warnings:
+            click.echo(f"        warning: {warning}", err=True)
+        sim.warnings.clear()
+
+
+def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
+    from robosc.runtime.simulator import CommandError
+
+    try:
+        with open(path, encoding="utf-8") as handle:
+            lines = handle.read().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise input_problem(f"{path}: cannot read: {exc}") from None
+    for number, line in enumerate(lines, 1):
+        try:
+            outcome = sim.run(line)
+        except CommandError as exc:
+            column = len(line) - len(line.lstrip()) + 1
+            click.echo(f"{path}:{number}:{column}: error: {exc}", err=True)
+            return EXIT_USAGE
+        _report(sim, outcome, quiet)
+    return EXIT_OK
+
+
+def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool) -> int:
+    rng = random.Random(seed)
+    for _ in range(steps):
+        _report(sim, sim.random_step(rng), quiet)
+    click.echo(f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable")
+    if sim.warnings:
+        click.echo(f"{len(sim.warnings)} warnings about data, e.g.: {sim.warnings[0]}")
+    return EXIT_OK
+
+
+def _show_state(sim: Simulator) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    snapshot = sim.snapshot()
+    table = Table("automaton / variable", "value", box=None, pad_edge=False)
+    components = {c.name for c in sim.network.model.components}
+    for name, location in snapshot["automata"].items():
+        busy = location not in ("idle",) and not name.endswith("_data")
+        if name in components or busy:
+            table.add_row(name, location)
+    for name, value in snapshot["variables"].items():
+        table.add_row(name, str(value))
+    console = Console(width=200 if not sys.stdout.isatty() else None)
+    console.print(table)
+    console.print("allowed: " + (", ".join(sim.allowed()) or "(none)"), markup=False)
+    console.print("robot events possible: " + (", ".join(sim.expected()) or "(none)"), markup=False)
+
+
+def _interactive(sim: Simulator) -> int:
+    from robosc.runtime.simulator import CommandError
+
+    click.echo(f"simulating {sim.network.model.name}; 'help' lists the commands")
+    _show_state(sim)
+    while True:
+        try:
+            line = input("> ")
+        except EOFError:
+            return EXIT_OK
+        word = line.strip()
+        if word in ("quit", "exit", "q"):
+            return EXIT_OK
+        if word == "help":
+            click.echo(HELP)
+            continue
+        if word == "state":
+            _show_state(sim)
+            continue
+        try:
+            _report(sim, sim.run(line), False)
+        except CommandError as exc:
+            click.echo(f"error: {exc}")
+            continue
+        if word:
+            _show_state(sim)
