@@ -23,6 +23,7 @@ import click
 from robosc.cli.check import check
 from robosc.cli.cif import cif
 from robosc.cli.fmt import fmt
+from robosc.cli.generate import build, generate
 from robosc.cli.simulate import simulate
 from robosc.cli.synthesize import synthesize
 
@@ -40,6 +41,8 @@ cli.add_command(fmt)
 cli.add_command(synthesize)
 cli.add_command(cif)
 cli.add_command(simulate)
+cli.add_command(generate)
+cli.add_command(build)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -8,7 +8,15 @@ from typing import TYPE_CHECKING, TextIO
 
 import click
 
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, EXIT_USAGE, exit_with, include_option, input_problem, supervised
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    EXIT_USAGE,
+    exit_with,
+    include_option,
+    input_problem,
+    supervised,
+)
 
 if TYPE_CHECKING:
     from robosc.runtime.simulator import Outcome, Simulator
@@ -28,11 +36,19 @@ HELP = """commands:
 @click.option("--script", type=click.Path(dir_okay=False), help="Run the commands in this file, one per line.")
 @click.option("--random", "steps", type=click.IntRange(min=0), help="Run N random steps (ticks and robot events).")
 @click.option("--seed", type=int, default=None, help="Seed for the controller's choices and --random.")
-@click.option("--log", "log_path", type=click.Path(dir_okay=False), help="Write every event as JSON Lines to this file.")
+@click.option(
+    "--log", "log_path", type=click.Path(dir_okay=False), help="Write every event as JSON Lines to this file."
+)
 @click.option("--quiet", is_flag=True, help="Print only problems and the final state.")
 @include_option
 def simulate(
-    file: str, script: str | None, steps: int | None, seed: int | None, log_path: str | None, quiet: bool, include: tuple[str, ...]
+    file: str,
+    script: str | None,
+    steps: int | None,
+    seed: int | None,
+    log_path: str | None,
+    quiet: bool,
+    include: tuple[str, ...],
 ) -> None:
     """Run the generated supervisor without ROS, checking every step.
 
@@ -103,7 +119,9 @@ def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool) -> int:
     rng = random.Random(seed)
     for _ in range(steps):
         _report(sim, sim.random_step(rng), quiet)
-    click.echo(f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable")
+    click.echo(
+        f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable"
+    )
     if sim.warnings:
         click.echo(f"{len(sim.warnings)} warnings about data, e.g.: {sim.warnings[0]}")
     return EXIT_OK

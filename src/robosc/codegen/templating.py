@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import xml.sax.saxutils
 from functools import lru_cache
 
 import jinja2
@@ -19,6 +20,9 @@ def environment(package: str = "robosc.codegen") -> jinja2.Environment:
         autoescape=False,  # generated code, not HTML: every model string goes through a filter below
     )
     env.filters["py"] = _python_literal
+    env.filters["doc"] = _docstring_text
+    env.filters["xml"] = xml.sax.saxutils.escape
+    env.filters["xmlattr"] = xml.sax.saxutils.quoteattr
     return env
 
 
@@ -27,3 +31,8 @@ def _python_literal(value: object) -> str:
     if isinstance(value, str | int | float | bool) or value is None:
         return repr(value)
     raise TypeError(f"no Python literal for {value!r}")
+
+
+def _docstring_text(value: object) -> str:
+    """Text from the model made safe inside a triple-quoted docstring."""
+    return repr(str(value))[1:-1].replace('"', '\\"')

@@ -20,4 +20,11 @@ def render_module(plan: Plan) -> str:
     from importlib.metadata import version
 
     template = environment("robosc.runtime").get_template("supervisor.py.j2")
-    return template.render(plan=plan, version=version("robosc"), source_name=Path(plan.source).name)
+    return template.render(plan=plan, version=version("robosc"), source_name=source_name(plan))
+
+
+def source_name(plan: Plan) -> str:
+    """The model's file name, reduced to characters that are safe in any generated file."""
+    import re
+
+    return re.sub(r"[^\w.\- ]", "_", Path(plan.source).name)

@@ -242,8 +242,8 @@ class _Planner:
                 locations[location] = (f, location.name)
         variables = {}
         for component in self.model.components:
-            for automaton in component.behaviours:
-                for v in automaton.variables:
+            for behaviour in component.behaviours:
+                for v in behaviour.variables:
                     variables[v] = identifier("v", component.name, v.name)
         self.names = Names(locations, variables)
         self.kept = set(network.variables)
@@ -282,13 +282,10 @@ class _Planner:
                 )
             )
         for component in self.model.components:
-            for automaton in component.behaviours:
-                for v in automaton.variables:
+            for behaviour in component.behaviours:
+                for v in behaviour.variables:
                     t = v.type
-                    if v.initial is not None:
-                        initial = self.py(v.initial)
-                    else:
-                        initial = constant(_default_value(t))
+                    initial = self.py(v.initial) if v.initial is not None else constant(_default_value(t))
                     values = tuple(x.name for x in t.values) if isinstance(t, m.EnumType) else ()
                     low = t.low if isinstance(t, m.BasicType) else None
                     high = t.high if isinstance(t, m.BasicType) else None
@@ -434,9 +431,9 @@ class _Planner:
             t = self.received_type(event)
             if isinstance(t, m.EnumType):
                 convert = self.conversion(t).function
-            if event.kind in (K.MESSAGE, K.TRIGGER) and event.controllable:
-                if event.communication in self.data_plants:
-                    data = self.data_plants[event.communication].method
+            is_sent = event.kind in (K.MESSAGE, K.TRIGGER) and event.controllable
+            if is_sent and event.communication in self.data_plants:
+                data = self.data_plants[event.communication].method
         return EventPlan(
             event.name,
             identifier(event.name.replace(".", "_")),

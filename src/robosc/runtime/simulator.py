@@ -121,10 +121,15 @@ class Simulator:
             if not holds:
                 raise Violation(self.step, name, f"breaks '{requirement.description}'", describe(self.network, before))
         if controllable and not self.result.allows(event, before):
-            raise Violation(self.step, name, "the synthesized supervisor does not allow it here", describe(self.network, before))
+            raise Violation(
+                self.step, name, "the synthesized supervisor does not allow it here", describe(self.network, before)
+            )
         if not self.result.controlled(after):
             raise Violation(
-                self.step, name, "leads outside the controlled behaviour (no marked state reachable)", describe(self.network, after)
+                self.step,
+                name,
+                "leads outside the controlled behaviour (no marked state reachable)",
+                describe(self.network, after),
             )
         if self.log is not None or self.on_event is not None:
             record = {

@@ -1,0 +1,92 @@
+"""``robosc generate FILE --ros 1|2 --mode controller|supervisor -o DIR`` and ``robosc build FILE -o DIR``."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, supervised
+
+MODE = click.option(
+    "--mode",
+    type=click.Choice(["controller", "supervisor"]),
+    default="controller",
+    show_default=True,
+    help="controller: the node drives the robot; supervisor: a supervision layer between an existing controller and the robot.",
+)
+
+
+def _write_package(plan: object, ros: int, mode: str, output: Path, file: str, include: tuple[str, ...]) -> list[Path]:
+    from robosc.codegen.ros import generate as generate_package
+    from robosc.runtime.plan import PlanError
+
+    try:
+        return generate_package(plan, ros, mode, output)  # type: ignore[arg-type]
+    except PlanError as exc:
+        from robosc.api import check_file
+        from robosc.language.diagnostics import error, render_text
+
+        sources = check_file(file, include).sources
+        click.echo(render_text(error(exc.span, str(exc), "runtime"), sources), err=True)  # type: ignore[arg-type]
+        raise exit_with(EXIT_MODEL_ERRORS) from None
+    except OSError as exc:
+        raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@click.option(
+    "--ros",
+    type=click.Choice(["1", "2"]),
+    required=True,
+    help="ROS generation: 1 (catkin, rospy) or 2 (ament_python, rclpy).",
+)
+@MODE
+@click.option(
+    "-o", "--output", type=click.Path(file_okay=False), required=True, help="Directory to write the package to."
+)
+@include_option
+def generate(file: str, ros: str, mode: str, output: str, include: tuple[str, ...]) -> None:
+    """Generate a ROS package running the synthesized supervisor."""
+    _, plan = supervised(file, include, "code generation")
+    written = _write_package(plan, int(ros), mode, Path(output), file, include)
+    click.echo(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
+    raise exit_with(EXIT_OK)
+
+
+@click.command()
+@click.argument("file", type=click.Path())
+@click.option("-o", "--output", type=click.Path(file_okay=False), required=True, help="Directory for everything built.")
+@MODE
+@include_option
+def build(file: str, output: str, mode: str, include: tuple[str, ...]) -> None:
+    """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
+    stand-alone supervisor module and the CIF file."""
+    from rich.console import Console
+
+    from robosc.codegen.cif import to_cif
+    from robosc.runtime.module import module_name, render_module
+
+    result, plan = supervised(file, include, "a build")
+    out = Path(output)
+    console = Console(highlight=False, width=200 if not sys.stdout.isatty() else None)
+    console.print(
+        f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "
+        f"{result.reachable_states:,} reachable states, {len(result.added_guards)} added guards"
+    )
+    for ros in (1, 2):
+        target = out / f"ros{ros}"
+        written = _write_package(plan, ros, mode, target, file, include)
+        console.print(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
+    try:
+        module = out / f"{module_name(plan)}.py"
+        module.write_text(render_module(plan), encoding="utf-8")
+        console.print(f"  stand-alone supervisor: {module}")
+        cif_path = out / f"{plan.robot}.cif"
+        cif_path.write_text(to_cif(result.network, Path(file).name), encoding="utf-8")
+        console.print(f"  CIF: {cif_path}")
+    except OSError as exc:
+        raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
+    raise exit_with(EXIT_OK)
