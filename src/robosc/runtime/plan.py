@@ -114,6 +114,7 @@ class EventPlan:
     communication: Communication | None = None
     convert: str | None = None  # enum conversion of the received data
     data: str | None = None  # method building the data to send (triggers with provide statements)
+    signature: str | None = None  # Python literal: the constant part of the provided data, if any
 
     @property
     def hook(self) -> str | None:
@@ -426,6 +427,7 @@ class _Planner:
         communication = None
         convert = None
         data = None
+        signature = None
         if event.communication is not None:
             communication = self.communications[event.communication]
             t = self.received_type(event)
@@ -434,6 +436,9 @@ class _Planner:
             is_sent = event.kind in (K.MESSAGE, K.TRIGGER) and event.controllable
             if is_sent and event.communication in self.data_plants:
                 data = self.data_plants[event.communication].method
+                provides = [p for p in self.model.provides if p.communication is event.communication]
+                if len(provides) == 1:
+                    signature = _signature(provides[0].data)
         return EventPlan(
             event.name,
             identifier(event.name.replace(".", "_")),
@@ -446,6 +451,7 @@ class _Planner:
             communication,
             convert,
             data,
+            signature,
         )
 
     @staticmethod
@@ -552,6 +558,29 @@ class _Planner:
             tuple((a.name, self.automaton_field[a]) for a in self.network.automata),
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
         )
+
+
+def _constant(e: m.Expr) -> object:
+    if isinstance(e, m.Literal):
+        return e.value
+    if isinstance(e, m.Unary) and e.op == "-" and isinstance(e.operand, m.Literal):
+        value = e.operand.value
+        return -value if isinstance(value, int | float) and not isinstance(value, bool) else None
+    return None
+
+
+def _signature(data: m.Expr | m.ObjectValue) -> str | None:
+    """The fields of provided data that are constants, as a Python literal (nested dicts):
+    what tells the messages of events sharing a topic apart."""
+    if isinstance(data, m.ObjectValue):
+        items = []
+        for f in data.fields:
+            inner = _signature(f.value)
+            if inner is not None:
+                items.append(f"{f.property.name!r}: {inner}")
+        return "{" + ", ".join(items) + "}" if items else None
+    value = _constant(data)
+    return constant(value) if value is not None else None
 
 
 def _expressions(data: m.Expr | m.ObjectValue) -> list[m.Expr]:

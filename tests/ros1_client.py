@@ -1,0 +1,85 @@
+"""Helpers for the ROS 1 client scripts of the tests (run by Debian's python3, with rospy)."""
+
+import json
+import os
+import sys
+import threading
+import time
+
+import rospy
+from geometry_msgs.msg import Twist  # noqa: F401 (used by the scripts)
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import Bool, Empty, Float64, Int64, String  # noqa: F401
+
+
+def start(name="robosc_test"):
+    rospy.init_node(name, anonymous=True, disable_signals=True)
+
+
+class Recorder(object):
+    """Every message on a topic, with its arrival time."""
+
+    def __init__(self, topic, kind):
+        self.items = []
+        self.lock = threading.Lock()
+        self.subscriber = rospy.Subscriber(topic, kind, self.callback, queue_size=100)
+
+    def callback(self, message):
+        with self.lock:
+            self.items.append((time.time(), message))
+
+    def messages(self, since=0.0):
+        with self.lock:
+            return [m for t, m in self.items if t >= since]
+
+    def clear(self):
+        with self.lock:
+            self.items = []
+
+
+class State(Recorder):
+    """The node's /state (JSON)."""
+
+    def __init__(self):
+        Recorder.__init__(self, "/state", String)
+
+    def last(self):
+        found = self.messages()
+        return json.loads(found[-1].data) if found else None
+
+    def value(self, name):
+        state = self.last()
+        if state is None:
+            return None
+        return {**state["automata"], **state["variables"]}.get(name)
+
+
+def wait_for(condition, timeout=10.0):
+    end = time.time() + timeout
+    while time.time() < end:
+        if condition():
+            return True
+        time.sleep(0.02)
+    return condition()
+
+
+def publisher(topic, kind, subscribers=1, timeout=10.0):
+    """A publisher, once the node under test has subscribed."""
+    pub = rospy.Publisher(topic, kind, queue_size=10)
+    if not wait_for(lambda: pub.get_num_connections() >= subscribers, timeout):
+        raise SystemExit("nobody subscribed to %s" % topic)
+    return pub
+
+
+def scan(ranges):
+    message = LaserScan()
+    message.ranges = list(ranges)
+    return message
+
+
+def done(result):
+    """Print the result and end at once (actionlib's server threads would keep the process alive)."""
+    print(json.dumps(result))
+    sys.stdout.flush()
+    rospy.signal_shutdown("done")
+    os._exit(0)

@@ -1,0 +1,253 @@
+"""Generated ROS 1 nodes on a real rosmaster and rospy (Debian's packages, Debian's python3).
+
+Each test starts a rosmaster on 127.0.0.1 on a free port, generates the package
+of an example, runs its node under Debian's python3, and plays the robot in a
+client script: it publishes sensor data and asserts on what the node publishes.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ros_support import Ros1, build_package, ros1  # noqa: F401 (ros1 is a fixture)
+
+
+def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("examples/maze_solver.rscd", 1, "controller", tmp_path)
+    node = ros1.node(package, rate=20, seed=1, publish_state=True)
+    result = ros1.client(
+        """
+start()
+moves = Recorder("/cmd_vel", Twist)
+lefts = Recorder("/rotate_left", Int64)
+state = State()
+scan_pub = publisher("/scan", LaserScan)
+done_pub = publisher("/rotate_done", Empty)
+assert wait_for(lambda: len(moves.messages()) >= 3), "no movement commands"
+speed = moves.messages()[-1].linear.x
+# malformed data: an empty array, NaN, a short array: the enums fall back to their defaults
+for bad in ([], [float("nan")] * 360, [5.0]):
+    scan_pub.publish(scan(bad))
+    rospy.sleep(0.2)
+alive_moves = len(moves.messages())
+assert not lefts.messages(), "turned on malformed data"
+# a wall right in front
+scan_pub.publish(scan([0.3] + [5.0] * 359))
+assert wait_for(lambda: lefts.messages(), 5), "no turn at a wall"
+assert wait_for(lambda: state.value("Platform") == "turning", 5)
+rospy.sleep(0.3)
+moves.clear()
+rospy.sleep(0.5)
+moving_while_turning = len(moves.messages())
+# the turn is done and the way is free again
+scan_pub.publish(scan([5.0] * 360))
+done_pub.publish(Empty())
+assert wait_for(lambda: state.value("Platform") == "ready", 5)
+assert wait_for(lambda: len(moves.messages()) > 0, 5)
+done({"speed": speed, "turn": lefts.messages()[0].data, "alive_moves": alive_moves,
+      "moving_while_turning": moving_while_turning, "front": state.value("Distance.front")})
+"""
+    )
+    assert result["speed"] == 0.3
+    assert result["turn"] == 90
+    assert result["alive_moves"] >= 3
+    assert result["moving_while_turning"] == 0  # movement needs Platform.ready
+    assert result["front"] == "no_wall_front"
+    assert node.poll() is None, "the node died"
+    output = ros1.processes.output()
+    assert "unreadable data" in output  # the malformed scans were logged
+
+
+def test_line_follower_never_moves_while_stopped_or_unsafe(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("examples/line_follower.rscd", 1, "controller", tmp_path)
+    event_log = tmp_path / "events.jsonl"
+    node = ros1.node(package, rate=20, seed=2, publish_state=True, event_log=event_log)
+    result = ros1.client(
+        """
+start()
+cmd = Recorder("/cmd_vel", Twist)
+state = State()
+correction = publisher("/line/correction", Float64)
+scan_pub = publisher("/scan", LaserScan)
+stop = publisher("/emergency_stop/stop", Empty)
+resume = publisher("/emergency_stop/continue", Empty)
+
+def speeds(seconds):
+    rospy.sleep(0.3)  # let commands already on the way arrive
+    cmd.clear()
+    rospy.sleep(seconds)
+    return [m.linear.x for m in cmd.messages()]
+
+report = {}
+report["start"] = speeds(0.5)  # unsafe until the first scan, no line yet
+correction.publish(Float64(data=10.0))
+scan_pub.publish(scan([5.0] * 360))
+assert wait_for(lambda: state.value("Lidar.safety") == "safe" and state.value("LineDetector") == "line_found")
+report["driving"] = speeds(0.5)
+report["steer"] = cmd.messages()[-1].angular.z
+stop.publish(Empty())
+assert wait_for(lambda: state.value("EmergencyStop") == "stopped")
+report["stopped"] = speeds(0.5)
+resume.publish(Empty())
+assert wait_for(lambda: state.value("EmergencyStop") == "in_service")
+report["resumed"] = speeds(0.5)
+scan_pub.publish(scan([0.2] + [5.0] * 359))
+assert wait_for(lambda: state.value("Lidar.safety") == "unsafe")
+report["unsafe"] = speeds(0.5)
+done(report)
+"""
+    )
+    assert result["start"] and set(result["start"]) == {0.0}
+    assert 0.15 in result["driving"]
+    assert abs(result["steer"] - (-0.1)) < 1e-9
+    assert result["stopped"] and set(result["stopped"]) == {0.0}, "moved while the emergency stop was active"
+    assert 0.15 in result["resumed"]
+    assert result["unsafe"] and set(result["unsafe"]) == {0.0}, "moved while unsafe"
+    assert node.poll() is None
+    events = [json.loads(line) for line in event_log.read_text().splitlines()]
+    names = [e["event"] for e in events]
+    assert "stop" in names and "move" in names and "halt" in names
+    stop_at = names.index("stop")
+    assert events[stop_at]["state"]["automata"]["EmergencyStop"] == "stopped"
+    assert events[stop_at]["controllable"] is False
+
+
+SERVERS = """
+import actionlib
+from actionlib.msg import TestAction, TestFeedback, TestResult
+from std_srvs.srv import SetBool, SetBoolResponse
+start()
+state = State()
+calls, goals, cancelled = [], [], []
+
+def light(request):
+    calls.append(request.data)
+    if MODE == "never":
+        rospy.sleep(3600)
+    if MODE == "fail" and len(calls) == 1:
+        raise rospy.ServiceException("the bulb is broken")
+    return SetBoolResponse(success=True, message="ok")
+
+rospy.Service("/light/set", SetBool, light)
+
+def work(goal):
+    goals.append(goal.goal)
+    server.publish_feedback(TestFeedback(feedback=3))
+    if MODE == "long":
+        while not server.is_preempt_requested():
+            rospy.sleep(0.01)
+        cancelled.append(goal.goal)
+        server.set_preempted()
+        return
+    rospy.sleep(0.1)
+    server.set_succeeded(TestResult(result=42))
+
+server = actionlib.SimpleActionServer("/arm/work", TestAction, execute_cb=work, auto_start=False)
+server.start()
+"""
+
+
+def test_service_and_action_against_real_servers(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("tests/models/calls_ros1.rscd", 1, "controller", tmp_path)
+    node = ros1.node(package, rate=20, seed=3, publish_state=True)
+    result = ros1.client(
+        'MODE = "fail"\n'
+        + SERVERS
+        + """
+assert wait_for(lambda: len(goals) >= 1, 20), "no goal reached the action server"
+assert wait_for(lambda: state.value("Arm.result") == 42, 10)
+done({"calls": calls, "goals": goals[:2], "light": state.value("Light"), "progress": state.value("Arm.progress")})
+"""
+    )
+    assert result["calls"][:2] == [True, True]  # the first call failed (error event), the light was tried again
+    assert result["light"] == "lit"
+    assert result["goals"][0] == 7
+    assert result["progress"] == 3  # from the action's feedback
+    assert node.poll() is None
+
+
+def test_action_cancelled_when_its_requirement_stops_holding(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("tests/models/calls_ros1.rscd", 1, "controller", tmp_path)
+    ros1.node(package, rate=20, seed=4, publish_state=True)
+    result = ros1.client(
+        'MODE = "long"\n'
+        + SERVERS
+        + """
+switch = publisher("/switch/off", Empty)
+assert wait_for(lambda: len(goals) >= 1 and state.value("Arm") == "working", 20)
+switch.publish(Empty())
+assert wait_for(lambda: cancelled, 10), "the goal was not cancelled"
+assert wait_for(lambda: state.value("Arm") == "idle", 5)
+rospy.sleep(0.5)
+done({"goals": len(goals), "arm": state.value("Arm"), "switch": state.value("Switch")})
+"""
+    )
+    assert result["goals"] == 1  # not started again: the switch is open
+    assert result["arm"] == "idle"
+    assert result["switch"] == "open"
+
+
+def test_a_service_that_never_answers_does_not_stop_the_node(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("tests/models/calls_ros1.rscd", 1, "controller", tmp_path)
+    node = ros1.node(package, rate=20, seed=5, publish_state=True)
+    result = ros1.client(
+        'MODE = "never"\n'
+        + SERVERS
+        + """
+assert wait_for(lambda: calls, 20)
+rospy.sleep(0.5)
+before = len(state.messages())
+rospy.sleep(1.0)
+done({"states": len(state.messages()) - before, "light": state.value("Light")})
+"""
+    )
+    assert result["states"] >= 10  # the cycle goes on at 20 Hz
+    assert result["light"] == "turning_on"
+    assert node.poll() is None
+
+
+def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("examples/maze_solver.rscd", 1, "supervisor", tmp_path)
+    node = ros1.node(package, rate=20, publish_state=True)
+    result = ros1.client(
+        """
+start()
+robot_moves = Recorder("/cmd_vel", Twist)
+robot_lefts = Recorder("/rotate_left", Int64)
+blocked = Recorder("/blocked", String)
+seen_by_controller = Recorder("/robosc/controller/scan", LaserScan)
+state = State()
+controller_move = publisher("/robosc/controller/cmd_vel", Twist)
+controller_left = publisher("/robosc/controller/rotate_left", Int64)
+scan_pub = publisher("/scan", LaserScan)
+forward = Twist()
+forward.linear.x = 0.3
+report = {}
+controller_move.publish(forward)  # the way is free: allowed
+assert wait_for(lambda: robot_moves.messages(), 5), "an allowed command was not forwarded"
+controller_left.publish(Int64(data=90))  # no wall in front: turning left is not allowed
+assert wait_for(lambda: blocked.messages(), 5), "a forbidden command was not reported"
+report["blocked_left"] = json.loads(blocked.messages()[-1].data)["event"]
+scan_pub.publish(scan([0.3] + [5.0] * 359))  # a wall ahead
+assert wait_for(lambda: seen_by_controller.messages(), 5), "robot data not passed to the controller"
+assert wait_for(lambda: state.value("Distance.front") == "wall_front", 5)
+moves_before = len(robot_moves.messages())
+controller_move.publish(forward)  # into the wall: blocked
+assert wait_for(lambda: len(blocked.messages()) >= 2, 5)
+report["blocked_move"] = json.loads(blocked.messages()[-1].data)["event"]
+controller_left.publish(Int64(data=90))  # now turning left is allowed
+assert wait_for(lambda: robot_lefts.messages(), 5)
+rospy.sleep(0.3)
+report["moves_into_wall"] = len(robot_moves.messages()) - moves_before
+report["left"] = robot_lefts.messages()[0].data
+report["platform"] = state.value("Platform")
+done(report)
+"""
+    )
+    assert result["blocked_left"] == "turn_left"
+    assert result["blocked_move"] == "movement"
+    assert result["moves_into_wall"] == 0
+    assert result["left"] == 90
+    assert result["platform"] == "turning"
+    assert node.poll() is None
