@@ -1,0 +1,323 @@
+"""Generated ROS 2 nodes under real rclpy with Fast DDS (the ros-jazzy-* wheels).
+
+The node runs as a subprocess (``python -m <package>.node --ros-args ...``); the
+test is the robot: an in-process rclpy node with publishers, subscriptions, a
+real SetBool service server and a real test_msgs/Fibonacci action server. DDS
+stays on this machine (``ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST``) in a domain
+of the test's own.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from ros_support import ROOT, Ros2, build_package, ros2  # noqa: F401 (ros2 is a fixture)
+
+
+
+def _state(states: list[Any]) -> dict[str, Any]:
+    if not states:
+        return {}
+    data = json.loads(states[-1].data)
+    return {**data["automata"], **data["variables"]}
+
+
+def _wait_subscribed(ros: Ros2, publisher: Any, timeout: float = 15) -> None:
+    assert ros.spin_until(lambda: publisher.get_subscription_count() > 0, timeout), "the node did not subscribe"
+
+
+def _scan(ranges: list[float]) -> Any:
+    from sensor_msgs.msg import LaserScan
+
+    message = LaserScan()
+    message.ranges = [float(r) for r in ranges]
+    return message
+
+
+def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros2, tmp_path: Path) -> None:
+    from geometry_msgs.msg import Twist
+    from std_msgs.msg import Empty, Int64, String
+
+    package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    node = ros2.start(package, rate=20.0, seed=1, publish_state=True)
+    moves = ros2.record(Twist, "/cmd_vel")
+    lefts = ros2.record(Int64, "/rotate_left")
+    states = ros2.record(String, "/state")
+    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    done = ros2.node.create_publisher(Empty, "/rotate_done", 10)
+    _wait_subscribed(ros2, scan)
+    assert ros2.spin_until(lambda: len(moves) >= 3, 15), "no movement commands"
+    assert moves[-1].linear.x == 0.3
+    for bad in ([], [float("nan")] * 360, [5.0]):  # empty, NaN, too short for ranges[270]
+        scan.publish(_scan(bad))
+        ros2.spin(0.2)
+    assert not lefts, "turned on malformed data"
+    scan.publish(_scan([0.3] + [5.0] * 359))
+    assert ros2.spin_until(lambda: bool(lefts), 5), "no turn at a wall"
+    assert lefts[0].data == 90
+    assert ros2.spin_until(lambda: _state(states).get("Platform") == "turning", 5)
+    ros2.spin(0.3)
+    moves.clear()
+    ros2.spin(0.5)
+    assert not moves, "moved while turning"
+    scan.publish(_scan([5.0] * 360))
+    done.publish(Empty())
+    assert ros2.spin_until(lambda: _state(states).get("Platform") == "ready", 5)
+    assert ros2.spin_until(lambda: bool(moves), 5)
+    assert node.poll() is None, "the node died"
+    assert "unreadable data" in ros2.processes.output()
+
+
+def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path: Path) -> None:
+    from geometry_msgs.msg import Twist
+    from std_msgs.msg import Empty, Float64, String
+
+    package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
+    event_log = tmp_path / "events.jsonl"
+    node = ros2.start(package, rate=20.0, seed=2, publish_state=True, event_log=str(event_log))
+    cmd = ros2.record(Twist, "/cmd_vel")
+    states = ros2.record(String, "/state")
+    correction = ros2.node.create_publisher(Float64, "/line/correction", 10)
+    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
+    resume = ros2.node.create_publisher(Empty, "/emergency_stop/continue", 10)
+    for publisher in (correction, scan, stop, resume):
+        _wait_subscribed(ros2, publisher)
+
+    def speeds(seconds: float) -> list[float]:
+        ros2.spin(0.3)
+        cmd.clear()
+        ros2.spin(seconds)
+        return [m.linear.x for m in cmd]
+
+    start = speeds(0.5)
+    assert start and set(start) == {0.0}
+    correction.publish(Float64(data=10.0))
+    scan.publish(_scan([5.0] * 360))
+    assert ros2.spin_until(
+        lambda: _state(states).get("Lidar.safety") == "safe" and _state(states).get("LineDetector") == "line_found", 10
+    )
+    driving = speeds(0.5)
+    assert 0.15 in driving
+    assert abs(cmd[-1].angular.z - (-0.1)) < 1e-9
+    stop.publish(Empty())
+    assert ros2.spin_until(lambda: _state(states).get("EmergencyStop") == "stopped", 5)
+    stopped = speeds(0.5)
+    assert stopped and set(stopped) == {0.0}, "moved while the emergency stop was active"
+    resume.publish(Empty())
+    assert ros2.spin_until(lambda: _state(states).get("EmergencyStop") == "in_service", 5)
+    assert 0.15 in speeds(0.5)
+    scan.publish(_scan([0.2] + [5.0] * 359))
+    assert ros2.spin_until(lambda: _state(states).get("Lidar.safety") == "unsafe", 5)
+    unsafe = speeds(0.5)
+    assert unsafe and set(unsafe) == {0.0}, "moved while unsafe"
+    assert node.poll() is None
+    events = [json.loads(line) for line in event_log.read_text().splitlines()]
+    names = [e["event"] for e in events]
+    assert {"stop", "move", "halt", "scan"} <= set(names)
+
+
+class _Robot:
+    """The pick station's servers: SetBool for the light, Fibonacci for the arm."""
+
+    def __init__(self, ros: Ros2, long_goals: bool = False) -> None:
+        from rclpy.action import ActionServer, CancelResponse
+        from rclpy.callback_groups import ReentrantCallbackGroup
+        from std_srvs.srv import SetBool
+        from test_msgs.action import Fibonacci
+
+        self.light_calls: list[bool] = []
+        self.goals: list[int] = []
+        self.cancelled: list[int] = []
+        self.long_goals = long_goals
+        group = ReentrantCallbackGroup()
+        ros.node.create_service(SetBool, "/light/set", self.light, callback_group=group)
+        self.server = ActionServer(
+            ros.node,
+            Fibonacci,
+            "/arm/pick",
+            execute_callback=self.pick,
+            cancel_callback=lambda _goal: CancelResponse.ACCEPT,
+            callback_group=group,
+        )
+
+    def light(self, request: Any, response: Any) -> Any:
+        self.light_calls.append(request.data)
+        response.success = True
+        response.message = "ok"
+        return response
+
+    def pick(self, goal_handle: Any) -> Any:
+        from test_msgs.action import Fibonacci
+
+        self.goals.append(goal_handle.request.order)
+        feedback = Fibonacci.Feedback()
+        feedback.sequence = [2]
+        goal_handle.publish_feedback(feedback)
+        result = Fibonacci.Result()
+        end = time.monotonic() + (30 if self.long_goals else 0.1)
+        while time.monotonic() < end:
+            if goal_handle.is_cancel_requested:
+                self.cancelled.append(goal_handle.request.order)
+                goal_handle.canceled()
+                return result
+            time.sleep(0.01)
+        result.sequence = [5]
+        goal_handle.succeed()
+        return result
+
+
+def _pick_station(ros2: Ros2, tmp_path: Path, seed: int) -> tuple[subprocess.Popen[bytes], list[Any], Any, Any]:
+    from geometry_msgs.msg import Pose
+    from std_msgs.msg import Empty, String
+
+    package = build_package("examples/pick_and_light.rscd", 2, "controller", tmp_path)
+    node = ros2.start(package, rate=20.0, seed=seed, publish_state=True)
+    states = ros2.record(String, "/state")
+    seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
+    lost = ros2.node.create_publisher(Empty, "/camera/lost", 10)
+    _wait_subscribed(ros2, seen)
+    _wait_subscribed(ros2, lost)
+    return node, states, seen, lost
+
+
+def test_pick_station_service_action_and_announcement(ros2: Ros2, tmp_path: Path) -> None:
+    from rclpy.executors import MultiThreadedExecutor
+
+    from geometry_msgs.msg import Pose
+    from std_msgs.msg import String
+
+    ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
+    ros2.executor.add_node(ros2.node)
+    robot = _Robot(ros2)
+    announcements = ros2.record(String, "/speaker/say")
+    look_at = ros2.record(Pose, "/camera/look_at")
+    node, states, seen, _ = _pick_station(ros2, tmp_path, seed=3)
+    target = Pose()
+    target.position.x, target.position.y = 1.25, -0.5
+    seen.publish(target)
+    assert ros2.spin_until(lambda: bool(look_at), 10), "the camera was not pointed at the object"
+    assert (look_at[0].position.x, look_at[0].position.y, look_at[0].position.z) == (1.25, -0.5, 0.5)
+    assert ros2.spin_until(lambda: len(robot.goals) >= 3, 30), f"picks: {robot.goals}"
+    assert ros2.spin_until(lambda: bool(announcements), 10), "the full bin was not announced"
+    assert announcements[0].data == "the bin is full"
+    assert set(robot.goals) == {1}
+    # the light goes on while the arm picks and off after: alternating requests
+    assert robot.light_calls[:4] == [True, False, True, False]
+    assert ros2.spin_until(lambda: _state(states).get("Arm") == "full", 5)
+    assert _state(states)["Arm.picks"] == 3
+    assert _state(states)["Arm.progress"] == 0  # reset by the response; the feedback had set it to 2
+    assert node.poll() is None
+
+
+def test_pick_cancelled_when_the_object_is_lost(ros2: Ros2, tmp_path: Path) -> None:
+    from rclpy.executors import MultiThreadedExecutor
+
+    from geometry_msgs.msg import Pose
+    from std_msgs.msg import Empty
+
+    ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
+    ros2.executor.add_node(ros2.node)
+    robot = _Robot(ros2, long_goals=True)
+    node, states, seen, lost = _pick_station(ros2, tmp_path, seed=4)
+    seen.publish(Pose())
+    assert ros2.spin_until(lambda: bool(robot.goals) and _state(states).get("Arm") == "picking", 20)
+    assert ros2.spin_until(lambda: _state(states).get("Arm.progress") == 2, 5)  # feedback arrived
+    lost.publish(Empty())
+    assert ros2.spin_until(lambda: bool(robot.cancelled), 10), "the pick was not cancelled"
+    assert ros2.spin_until(lambda: _state(states).get("Arm") == "idle", 5)
+    ros2.spin(0.5)
+    assert len(robot.goals) == 1  # not started again: the object is gone
+    assert node.poll() is None
+
+
+NEVER_ANSWERS = """
+import sys, time, rclpy
+from std_srvs.srv import SetBool
+rclpy.init(domain_id=int(sys.argv[1]))
+node = rclpy.create_node("mute_light")
+def light(request, response):
+    print("called", flush=True)
+    time.sleep(3600)
+    return response
+node.create_service(SetBool, "/light/set", light)
+rclpy.spin(node)
+"""
+
+
+def test_a_service_that_never_answers_does_not_stop_the_node(ros2: Ros2, tmp_path: Path) -> None:
+    from geometry_msgs.msg import Pose
+
+    server = ros2.processes.start("mute_light", [sys.executable, "-c", NEVER_ANSWERS, str(ros2.domain)], ros2.env)
+    from rclpy.executors import MultiThreadedExecutor
+
+    ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
+    ros2.executor.add_node(ros2.node)
+    robot = _Robot.__new__(_Robot)  # only the action server: the light is the mute one
+    robot.goals, robot.cancelled, robot.long_goals, robot.light_calls = [], [], True, []
+    from rclpy.action import ActionServer, CancelResponse
+    from test_msgs.action import Fibonacci
+
+    ActionServer(ros2.node, Fibonacci, "/arm/pick", execute_callback=robot.pick, cancel_callback=lambda _g: CancelResponse.ACCEPT)
+    node, states, seen, _ = _pick_station(ros2, tmp_path, seed=5)
+    seen.publish(Pose())
+    assert ros2.spin_until(lambda: _state(states).get("Light") == "turning_on", 20)
+    count = len(states)
+    ros2.spin(1.0)
+    assert len(states) - count >= 10  # the cycle goes on at 20 Hz
+    assert _state(states).get("Light") == "turning_on"
+    assert node.poll() is None
+    assert server.poll() is None
+
+
+def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: Ros2, tmp_path: Path) -> None:
+    from geometry_msgs.msg import Twist
+    from std_msgs.msg import Int64, String
+
+    package = build_package("examples/maze_solver.rscd", 2, "supervisor", tmp_path)
+    node = ros2.start(package, rate=20.0, publish_state=True)
+    robot_moves = ros2.record(Twist, "/cmd_vel")
+    robot_lefts = ros2.record(Int64, "/rotate_left")
+    blocked = ros2.record(String, "/blocked")
+    states = ros2.record(String, "/state")
+    to_controller = ros2.record(_scan([]).__class__, "/robosc/controller/scan")
+    move = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
+    left = ros2.node.create_publisher(Int64, "/robosc/controller/rotate_left", 10)
+    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    for publisher in (move, left, scan):
+        _wait_subscribed(ros2, publisher)
+    forward = Twist()
+    forward.linear.x = 0.3
+    move.publish(forward)
+    assert ros2.spin_until(lambda: bool(robot_moves), 5), "an allowed command was not forwarded"
+    left.publish(Int64(data=90))
+    assert ros2.spin_until(lambda: bool(blocked), 5), "a forbidden command was not reported"
+    assert json.loads(blocked[-1].data)["event"] == "turn_left"
+    assert not robot_lefts
+    scan.publish(_scan([0.3] + [5.0] * 359))
+    assert ros2.spin_until(lambda: bool(to_controller), 5), "robot data not passed to the controller"
+    assert ros2.spin_until(lambda: _state(states).get("Distance.front") == "wall_front", 5)
+    before = len(robot_moves)
+    move.publish(forward)
+    assert ros2.spin_until(lambda: len(blocked) >= 2, 5)
+    assert json.loads(blocked[-1].data)["event"] == "movement"
+    left.publish(Int64(data=90))
+    assert ros2.spin_until(lambda: bool(robot_lefts), 5)
+    ros2.spin(0.3)
+    assert len(robot_moves) == before
+    assert robot_lefts[0].data == 90
+    assert _state(states).get("Platform") == "turning"
+    assert node.poll() is None
+
+
+def test_launch_files_compile(tmp_path: Path) -> None:
+    for mode in ("controller", "supervisor"):
+        package = build_package("examples/maze_solver.rscd", 2, mode, tmp_path)
+        for launch in (package / "launch").glob("*.launch.py"):
+            compile(launch.read_text(), str(launch), "exec")
+    assert ROOT.exists()
