@@ -50,3 +50,7 @@ def robot(*body: str) -> str:
 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))  # the model families
+
+
+# real-ROS fixtures (tests/ros_support.py)
+from ros_support import ros1, ros2  # noqa: E402, F401

@@ -16,7 +16,7 @@ def start(name="robosc_test"):
     rospy.init_node(name, anonymous=True, disable_signals=True)
 
 
-class Recorder(object):
+class Recorder:
     """Every message on a topic, with its arrival time."""
 
     def __init__(self, topic, kind):
@@ -67,7 +67,7 @@ def publisher(topic, kind, subscribers=1, timeout=10.0):
     """A publisher, once the node under test has subscribed."""
     pub = rospy.Publisher(topic, kind, queue_size=10)
     if not wait_for(lambda: pub.get_num_connections() >= subscribers, timeout):
-        raise SystemExit("nobody subscribed to %s" % topic)
+        raise SystemExit("nobody subscribed to " + topic)
     return pub
 
 

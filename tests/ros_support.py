@@ -92,7 +92,9 @@ class Processes:
         self.logs = logs
         self.running: list[tuple[subprocess.Popen[bytes], Path]] = []
 
-    def start(self, name: str, command: list[str], env: dict[str, str], cwd: Path | None = None) -> subprocess.Popen[bytes]:
+    def start(
+        self, name: str, command: list[str], env: dict[str, str], cwd: Path | None = None
+    ) -> subprocess.Popen[bytes]:
         log = self.logs / f"{name}.log"
         handle = open(log, "wb")  # noqa: SIM115 (closed with the process)
         process = subprocess.Popen(command, env=env, stdout=handle, stderr=subprocess.STDOUT, cwd=cwd)
@@ -145,7 +147,9 @@ class Ros1:
         """Run a client script (rospy, the helpers of ros1_client.py in scope); it prints its
         result as JSON on the last line."""
         script = f"import sys\nsys.path.insert(0, {str(HELPERS.parent)!r})\nfrom ros1_client import *\n{body}\n"
-        done = subprocess.run([ROS1_PYTHON, "-c", script], env=self.env, capture_output=True, timeout=timeout, text=True)
+        done = subprocess.run(
+            [ROS1_PYTHON, "-c", script], env=self.env, capture_output=True, timeout=timeout, text=True
+        )
         if done.returncode != 0:
             raise AssertionError(f"client failed:\n{done.stdout}\n{done.stderr}\n{self.processes.output()}")
         return json.loads(done.stdout.strip().splitlines()[-1])

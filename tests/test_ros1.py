@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ros_support import Ros1, build_package, ros1  # noqa: F401 (ros1 is a fixture)
+from ros_support import Ros1, build_package
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros1, tmp_path: Path) -> None:

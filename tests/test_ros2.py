@@ -16,8 +16,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ros_support import ROOT, Ros2, build_package, ros2  # noqa: F401 (ros2 is a fixture)
-
+from ros_support import ROOT, Ros2, build_package
 
 
 def _state(states: list[Any]) -> dict[str, Any]:
@@ -135,6 +134,7 @@ class _Robot:
         self.goals: list[int] = []
         self.cancelled: list[int] = []
         self.long_goals = long_goals
+        self.context = ros.context
         group = ReentrantCallbackGroup()
         ros.node.create_service(SetBool, "/light/set", self.light, callback_group=group)
         self.server = ActionServer(
@@ -161,35 +161,36 @@ class _Robot:
         goal_handle.publish_feedback(feedback)
         result = Fibonacci.Result()
         end = time.monotonic() + (30 if self.long_goals else 0.1)
-        while time.monotonic() < end:
+        while time.monotonic() < end and self.context.ok():
             if goal_handle.is_cancel_requested:
                 self.cancelled.append(goal_handle.request.order)
                 goal_handle.canceled()
                 return result
             time.sleep(0.01)
+        if not self.context.ok():
+            return result
         result.sequence = [5]
         goal_handle.succeed()
         return result
 
 
-def _pick_station(ros2: Ros2, tmp_path: Path, seed: int) -> tuple[subprocess.Popen[bytes], list[Any], Any, Any]:
+def _pick_station(ros: Ros2, tmp_path: Path, seed: int) -> tuple[subprocess.Popen[bytes], list[Any], Any, Any]:
     from geometry_msgs.msg import Pose
     from std_msgs.msg import Empty, String
 
     package = build_package("examples/pick_and_light.rscd", 2, "controller", tmp_path)
-    node = ros2.start(package, rate=20.0, seed=seed, publish_state=True)
-    states = ros2.record(String, "/state")
-    seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
-    lost = ros2.node.create_publisher(Empty, "/camera/lost", 10)
-    _wait_subscribed(ros2, seen)
-    _wait_subscribed(ros2, lost)
+    node = ros.start(package, rate=20.0, seed=seed, publish_state=True)
+    states = ros.record(String, "/state")
+    seen = ros.node.create_publisher(Pose, "/camera/object", 10)
+    lost = ros.node.create_publisher(Empty, "/camera/lost", 10)
+    _wait_subscribed(ros, seen)
+    _wait_subscribed(ros, lost)
     return node, states, seen, lost
 
 
 def test_pick_station_service_action_and_announcement(ros2: Ros2, tmp_path: Path) -> None:
-    from rclpy.executors import MultiThreadedExecutor
-
     from geometry_msgs.msg import Pose
+    from rclpy.executors import MultiThreadedExecutor
     from std_msgs.msg import String
 
     ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
@@ -216,9 +217,8 @@ def test_pick_station_service_action_and_announcement(ros2: Ros2, tmp_path: Path
 
 
 def test_pick_cancelled_when_the_object_is_lost(ros2: Ros2, tmp_path: Path) -> None:
-    from rclpy.executors import MultiThreadedExecutor
-
     from geometry_msgs.msg import Pose
+    from rclpy.executors import MultiThreadedExecutor
     from std_msgs.msg import Empty
 
     ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
@@ -260,10 +260,13 @@ def test_a_service_that_never_answers_does_not_stop_the_node(ros2: Ros2, tmp_pat
     ros2.executor.add_node(ros2.node)
     robot = _Robot.__new__(_Robot)  # only the action server: the light is the mute one
     robot.goals, robot.cancelled, robot.long_goals, robot.light_calls = [], [], True, []
+    robot.context = ros2.context
     from rclpy.action import ActionServer, CancelResponse
     from test_msgs.action import Fibonacci
 
-    ActionServer(ros2.node, Fibonacci, "/arm/pick", execute_callback=robot.pick, cancel_callback=lambda _g: CancelResponse.ACCEPT)
+    ActionServer(
+        ros2.node, Fibonacci, "/arm/pick", execute_callback=robot.pick, cancel_callback=lambda _g: CancelResponse.ACCEPT
+    )
     node, states, seen, _ = _pick_station(ros2, tmp_path, seed=5)
     seen.publish(Pose())
     assert ros2.spin_until(lambda: _state(states).get("Light") == "turning_on", 20)

@@ -95,6 +95,24 @@ def _attribute(name: str, taken: set[str]) -> str:
     return candidate
 
 
+def _check_interface(c: Communication) -> None:
+    """ROS needs a type for everything but basic data on a topic (which goes in std_msgs)."""
+    if c.package is not None and c.ros_type is not None:
+        return
+    if c.kind in ("service", "action"):
+        raise PlanError(
+            f"{c.kind} '{c.name}' needs an interface ('links ...') to run on ROS: "
+            f"robosc cannot tell which ROS {'srv' if c.kind == 'service' else 'action'} type to use",
+            c.span,
+        )
+    if c.data_kind == "object":
+        raise PlanError(
+            f"message '{c.name}' carries an object but links no interface: "
+            "robosc cannot tell which ROS message type to use",
+            c.span,
+        )
+
+
 def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
     if ros not in (1, 2):
         raise ValueError("ROS generation must be 1 or 2")
@@ -122,6 +140,7 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
     taken: set[str] = set()
     for c in plan.communications:
         events = events_by_comm.get(c.name, {})
+        _check_interface(c)
         if c.kind in ("incoming", "outgoing"):
             if c.package is not None and c.ros_type is not None:
                 type_name, basic, empty = need(f"{c.package}.msg", c.ros_type), False, False

@@ -97,7 +97,7 @@ class Communication:
     component: str
     package: str | None  # ROS package of the linked interface
     ros_type: str | None  # the linked interface's type name
-    data_kind: str  # for messages without interface: "string", "boolean", "integer", "double", "none"
+    data_kind: str  # messages: "string", "boolean", "integer", "double", "none" or "object"
     span: object
 
 
@@ -476,25 +476,12 @@ class _Planner:
         else:
             kind = "action"
         interface = c.interface
-        if kind in ("service", "action") and interface is None:
-            raise PlanError(
-                f"{kind} '{c.name}' needs an interface ('links ...') to run on ROS: "
-                f"robosc cannot tell which ROS {'srv' if kind == 'service' else 'action'} type to use",
-                c.span,
-            )
         data_kind = "none"
         if isinstance(c, m.Message):
             t = c.type
             while isinstance(t, m.EnumType):
                 t = t.source
-            if isinstance(t, m.BasicType):
-                data_kind = t.kind.value
-            elif interface is None:
-                raise PlanError(
-                    f"message '{c.name}' carries {t} but links no interface: "
-                    "robosc cannot tell which ROS message type to use",
-                    c.span,
-                )
+            data_kind = t.kind.value if isinstance(t, m.BasicType) else "object"
         return Communication(
             c.name,
             identifier(c.name),

@@ -91,6 +91,7 @@ class Simulator:
             values = {getattr(x, "name", x): x for x in self.network.domains[v]}
             self._variables.append((variable_fields[f"{v.owner}.{v.name}"], values))
         self._before = self.network_state()
+        self._violation: Violation | None = None
 
     # ---- state ---------------------------------------------------------------------------
     def network_state(self) -> NetworkState:
@@ -107,6 +108,21 @@ class Simulator:
 
     # ---- checks (called for every event, through the module's observer hook) ----------
     def _observe(self, name: str, controllable: bool, data: object) -> None:
+        # the generated module shields itself from its observer's exceptions: keep the
+        # first violation and raise it when the command returns (see _checked)
+        try:
+            self._check(name, controllable, data)
+        except Violation as violation:
+            if self._violation is None:
+                self._violation = violation
+
+    def _checked(self, outcome: Outcome) -> Outcome:
+        violation, self._violation = self._violation, None
+        if violation is not None:
+            raise violation
+        return outcome
+
+    def _check(self, name: str, controllable: bool, data: object) -> None:
         before, after = self._before, self.network_state()
         self._before = after
         self.events.append(name)
@@ -150,7 +166,7 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         self.supervisor.tick()
-        return Outcome(tuple(self.events[before:]))
+        return self._checked(Outcome(tuple(self.events[before:])))
 
     def allowed(self) -> list[str]:
         return list(self.supervisor.allowed())
@@ -163,16 +179,16 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         if not self.supervisor.perform(name):
-            return Outcome((), (f"refused: the supervisor does not allow {name} now",))
-        return Outcome(tuple(self.events[before:]))
+            return self._checked(Outcome((), (f"refused: the supervisor does not allow {name} now",)))
+        return self._checked(Outcome(tuple(self.events[before:])))
 
     def deliver(self, name: str, value: object = None, raw: bool = True) -> Outcome:
         """An uncontrollable event with its data (raw data goes through the enum rules)."""
         self.step += 1
         before = len(self.events)
         if not self.supervisor.deliver(name, value, raw):
-            return Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",))
-        return Outcome(tuple(self.events[before:]))
+            return self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
+        return self._checked(Outcome(tuple(self.events[before:])))
 
     def run(self, line: str) -> Outcome:
         """One script line: ``tick``, an event name with optional data, or ``expect NAME VALUE``."""
