@@ -58,6 +58,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     except KeyboardInterrupt:
         return 130
+    except ImportError as exc:
+        click.echo(f"robosc: error: {exc}", err=True)
+        return EXIT_INTERNAL
     except Exception as exc:
         click.echo(f"robosc: internal error: {type(exc).__name__}: {exc}", err=True)
         click.echo("please report this with the model that caused it", err=True)

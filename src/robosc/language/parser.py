@@ -8,7 +8,14 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
+import lark
 from lark import Lark, Token, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+if lark.__version__.startswith("0."):  # pragma: no cover - an environment problem, not a model problem
+    raise ImportError(
+        f"robosc needs lark 1.x, but lark {lark.__version__} is installed (lark-parser, pulled in by ROS 2's "
+        "rosidl-parser, writes over it): run  pip install --force-reinstall --no-deps 'lark>=1.1.9'"
+    )
 
 from robosc.language import syntax as s
 from robosc.language.diagnostics import Diagnostic, error
