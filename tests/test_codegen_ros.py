@@ -145,19 +145,15 @@ def test_generate_and_build_commands(tmp_path: Path) -> None:
 
 
 def test_generate_refuses_what_ros_cannot_run(tmp_path: Path) -> None:
-    result = run(
-        "generate",
-        str(ROOT / "examples/pick_and_light.rscd"),
-        "--ros",
-        "1",
-        "--mode",
-        "supervisor",
-        "-o",
-        str(tmp_path / "x"),
+    model = tmp_path / "clash.rscd"
+    model.write_text(
+        "robot K {\n  component C {\n    incoming message a with identifier: '/x', type: double\n"
+        "    incoming message b with identifier: '/x', type: boolean\n  }\n}\n"
     )
+    result = run("generate", str(model), "--ros", "1", "-o", str(tmp_path / "x"))
     assert result.returncode == 1
     assert (
-        "pick_and_light.rscd:69:9: error: action 'pick': a supervision layer cannot forward actions yet"
+        f"{model}:4:5: error: 'b' uses topic /x with type Bool, but another communication uses it with Float64"
         in result.stderr
     )
     model = tmp_path / "untyped.rscd"

@@ -251,3 +251,53 @@ done(report)
     assert result["left"] == 90
     assert result["platform"] == "turning"
     assert node.poll() is None
+
+
+def test_supervision_layer_forwards_services_and_actions(ros1: Ros1, tmp_path: Path) -> None:
+    package = build_package("tests/models/calls_ros1.rscd", 1, "supervisor", tmp_path)
+    node = ros1.node(package, rate=20, publish_state=True)
+    result = ros1.client(
+        'MODE = "ok"\n'
+        + SERVERS
+        + """
+from actionlib.msg import TestGoal
+from actionlib_msgs.msg import GoalStatus
+blocked = Recorder("/blocked", String)
+controller_light = rospy.ServiceProxy("/robosc/controller/light/set", SetBool)
+controller_arm = actionlib.SimpleActionClient("/robosc/controller/arm/work", TestAction)
+rospy.wait_for_service("/robosc/controller/light/set", 10)
+assert controller_arm.wait_for_server(rospy.Duration(10))
+report = {}
+# the light is dark: work needs Light.lit, so the goal is blocked
+controller_arm.send_goal(TestGoal(goal=5))
+controller_arm.wait_for_result(rospy.Duration(5))
+report["first_goal"] = controller_arm.get_state()
+assert wait_for(lambda: blocked.messages(), 5)
+report["blocked"] = json.loads(blocked.messages()[-1].data)["event"]
+report["goals_before"] = list(goals)
+# switching the light on is allowed: forwarded to the real service
+answer = controller_light(True)
+report["light_answer"] = answer.success
+assert wait_for(lambda: state.value("Light") == "lit", 5)
+feedback = []
+controller_arm.send_goal(TestGoal(goal=6), feedback_cb=lambda f: feedback.append(f.feedback))
+controller_arm.wait_for_result(rospy.Duration(10))
+report["second_goal"] = controller_arm.get_state()
+report["result"] = controller_arm.get_result().result
+report["feedback"] = feedback
+report["goals"] = list(goals)
+assert wait_for(lambda: state.value("Arm.result") == 42, 5)
+report["arm"] = state.value("Arm")
+done(report)
+"""
+    )
+    assert result["first_goal"] == 4  # GoalStatus.ABORTED: blocked by the supervisor
+    assert result["blocked"] == "work.c_trigger"
+    assert result["goals_before"] == []
+    assert result["light_answer"] is True
+    assert result["second_goal"] == 3  # GoalStatus.SUCCEEDED
+    assert result["result"] == 42
+    assert result["feedback"] == [3]
+    assert result["goals"] == [6]
+    assert result["arm"] == "idle"
+    assert node.poll() is None

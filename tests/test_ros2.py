@@ -324,3 +324,63 @@ def test_launch_files_compile(tmp_path: Path) -> None:
         for launch in (package / "launch").glob("*.launch.py"):
             compile(launch.read_text(), str(launch), "exec")
     assert ROOT.exists()
+
+
+def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: Path) -> None:
+    from geometry_msgs.msg import Pose
+    from rclpy.action import ActionClient
+    from rclpy.executors import MultiThreadedExecutor
+    from std_msgs.msg import Empty, String
+    from std_srvs.srv import SetBool
+    from test_msgs.action import Fibonacci
+
+    ros2.executor = MultiThreadedExecutor(num_threads=4, context=ros2.context)
+    ros2.executor.add_node(ros2.node)
+    robot = _Robot(ros2, long_goals=True)
+    package = build_package("examples/pick_and_light.rscd", 2, "supervisor", tmp_path)
+    node = ros2.start(package, rate=20.0, publish_state=True)
+    states = ros2.record(String, "/state")
+    blocked = ros2.record(String, "/blocked")
+    seen_by_controller = ros2.record(Pose, "/robosc/controller/camera/object")
+    seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
+    lost = ros2.node.create_publisher(Empty, "/camera/lost", 10)
+    light = ros2.node.create_client(SetBool, "/robosc/controller/light/set")
+    arm = ActionClient(ros2.node, Fibonacci, "/robosc/controller/arm/pick")
+    _wait_subscribed(ros2, seen)
+    assert ros2.spin_until(lambda: light.service_is_ready() and arm.server_is_ready(), 15)
+
+    def wait(future: Any, seconds: float = 10) -> Any:
+        assert ros2.spin_until(future.done, seconds)
+        return future.result()
+
+    # nothing seen yet: picking is not allowed, nor is the light (it goes on only while picking)
+    goal = Fibonacci.Goal()
+    goal.order = 1
+    handle = wait(arm.send_goal_async(goal))
+    result = wait(handle.get_result_async())
+    assert result.status == 6  # GoalStatus.STATUS_ABORTED
+    assert wait(light.call_async(SetBool.Request(data=True))).success is False
+    assert ros2.spin_until(lambda: len(blocked) >= 2, 5)
+    assert [json.loads(b.data)["event"] for b in blocked[:2]] == ["pick.c_trigger", "set_light.c_trigger"]
+    assert robot.goals == [] and robot.light_calls == []
+    # an object: the goal is forwarded, its feedback comes back
+    seen.publish(Pose())
+    assert ros2.spin_until(lambda: bool(seen_by_controller), 5), "robot data not passed to the controller"
+    assert ros2.spin_until(lambda: _state(states).get("Camera") == "seen", 5)
+    feedback: list[Any] = []
+    handle = wait(arm.send_goal_async(goal, feedback_callback=lambda f: feedback.append(list(f.feedback.sequence))))
+    assert handle.accepted
+    assert ros2.spin_until(lambda: robot.goals == [1] and bool(feedback), 10)
+    assert feedback[0] == [2]
+    # while picking the light may go on: forwarded to the real service
+    call = light.call_async(SetBool.Request(data=True))
+    ros2.spin_until(call.done, 10)
+    assert robot.light_calls == [True], robot.light_calls
+    assert call.done() and call.result().success is True
+    # the object is lost: the supervisor cancels the running pick
+    lost.publish(Empty())
+    assert ros2.spin_until(lambda: bool(robot.cancelled), 10), "the pick was not cancelled"
+    result = wait(handle.get_result_async())
+    assert result.status == 6  # aborted towards the controller: the supervisor cancelled it
+    assert ros2.spin_until(lambda: _state(states).get("Arm") == "idle", 5)
+    assert node.poll() is None

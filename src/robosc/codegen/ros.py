@@ -160,7 +160,9 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
         assert c.package is not None and c.ros_type is not None
         if c.kind == "service":
             type_name = need(f"{c.package}.srv", c.ros_type)
-            request = need(f"{c.package}.srv", f"{c.ros_type}Request") if ros == 1 else f"{type_name}.Request"
+            request = f"{type_name}.Request"
+            if ros == 1:  # the request class, which only the controller builds itself
+                request = need(f"{c.package}.srv", f"{c.ros_type}Request") if mode == "controller" else request
             services.append(
                 Call(
                     c,
@@ -174,15 +176,9 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
                 )
             )
         else:
-            if mode == "supervisor":
-                raise PlanError(
-                    f"action '{c.name}': a supervision layer cannot forward actions yet "
-                    "(generate it with --mode controller)",
-                    c.span,
-                )
             if ros == 1:
                 type_name = need(f"{c.package}.msg", f"{c.ros_type}Action")
-                request = need(f"{c.package}.msg", f"{c.ros_type}Goal")
+                request = need(f"{c.package}.msg", f"{c.ros_type}Goal") if mode == "controller" else ""
                 dependencies.update({"actionlib", "actionlib_msgs"})
             else:
                 type_name = need(f"{c.package}.action", c.ros_type)
