@@ -60,13 +60,19 @@ def ros2_available() -> bool:
     return True
 
 
-def build_package(model: str | Path, ros: int, mode: str, out: Path) -> Path:
-    """Generate the ROS ``ros`` package of a model into ``out``; returns the package directory."""
+def build_package(model: str | Path, ros: int, mode: str, out: Path, live: bool = False) -> Path:
+    """Generate the ROS ``ros`` package of a model into ``out``; returns the package directory.
+    With ``live``, the package carries the live view's page."""
     result = synthesize_model(load_model(ROOT / model))
     assert result.ok
     plan = plan_supervisor(result)
     target = out / f"{package_name(plan)}_ros{ros}_{mode}"
-    generate(plan, ros, mode, target)
+    page = None
+    if live:
+        from robosc.debug.live import render_page
+
+        page = render_page(result)
+    generate(plan, ros, mode, target, page)
     return target
 
 

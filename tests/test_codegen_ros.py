@@ -37,6 +37,7 @@ def test_ros1_catkin_package(tmp_path: Path) -> None:
         "CMakeLists.txt",
         "scripts/pick_and_light_robosc_node.py",
         "scripts/pick_and_light_supervisor.py",
+        "scripts/robosc_live.py",
         "launch/pick_and_light_robosc.launch",
     }
     assert {
@@ -71,6 +72,7 @@ def test_ros2_ament_python_package(tmp_path: Path) -> None:
         "pick_and_light_robosc/__init__.py",
         "pick_and_light_robosc/node.py",
         "pick_and_light_robosc/pick_and_light_supervisor.py",
+        "pick_and_light_robosc/robosc_live.py",
         "launch/pick_and_light_robosc.launch.py",
     }
     assert {"rclpy", "std_msgs", "geometry_msgs", "std_srvs", "test_msgs", "action_msgs"} <= depends(package)
@@ -139,7 +141,14 @@ def test_generate_and_build_commands(tmp_path: Path) -> None:
     assert (tmp_path / "lf/line_follower_robosc/node.py").exists()
     result = run("build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out"))
     assert result.returncode == 0, result.stderr
-    for relative in ("ros1/package.xml", "ros2/setup.py", "maze_solver_supervisor.py", "MazeSolver.cif"):
+    for relative in (
+        "ros1/package.xml",
+        "ros1/scripts/live_view.html",
+        "ros2/setup.py",
+        "ros2/maze_solver_robosc/live_view.html",
+        "maze_solver_supervisor.py",
+        "MazeSolver.cif",
+    ):
         assert (tmp_path / "out" / relative).exists(), relative
     assert "128 reachable states" in result.stdout
 

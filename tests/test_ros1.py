@@ -301,3 +301,37 @@ done(report)
     assert result["goals"] == [6]
     assert result["arm"] == "idle"
     assert node.poll() is None
+
+
+def test_node_serves_the_live_view(ros1: Ros1, tmp_path: Path) -> None:
+    import urllib.request
+
+    from ros_support import free_port, wait_until
+
+    package = build_package("examples/maze_solver.rscd", 1, "controller", tmp_path, live=True)
+    port = free_port()
+    node = ros1.node(package, rate=20, view_port=port)
+
+    def state() -> dict[str, object] | None:
+        try:
+            with urllib.request.urlopen(f"http://127.0.0.1:{port}/state", timeout=1) as response:
+                return json.loads(response.read()) or None
+        except OSError:
+            return None
+
+    assert wait_until(lambda: state() is not None, 20), ros1.processes.output()
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as response:
+        assert 'id="Platform::ready"' in response.read().decode()
+    ros1.client(
+        """
+start()
+scan_pub = publisher("/scan", LaserScan)
+scan_pub.publish(scan([0.3] + [5.0] * 359))
+rospy.sleep(0.5)
+done({})
+"""
+    )
+    assert wait_until(lambda: (state() or {}).get("event") == "turn_left", 10)
+    last = state()
+    assert last is not None and last["state"]["automata"]["Platform"] == "turning"  # type: ignore[index]
+    assert node.poll() is None

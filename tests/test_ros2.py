@@ -384,3 +384,41 @@ def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: P
     assert result.status == 6  # aborted towards the controller: the supervisor cancelled it
     assert ros2.spin_until(lambda: _state(states).get("Arm") == "idle", 5)
     assert node.poll() is None
+
+
+def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
+    """With view_port set, the node serves the page (laid out at generation time) and
+    streams its events; nothing but the generated files is needed."""
+    import urllib.request
+
+    from robosc.api import load_model, plan_supervisor, synthesize_model
+    from robosc.codegen.ros import generate
+    from robosc.debug.live import render_page
+    from ros_support import free_port
+
+    result = synthesize_model(load_model(ROOT / "examples/maze_solver.rscd"))
+    package = tmp_path / "maze_view"
+    generate(plan_supervisor(result), 2, "controller", package, render_page(result))
+    port = free_port()
+    node = ros2.start(package, rate=20.0, view_port=port)
+    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    _wait_subscribed(ros2, scan)
+
+    def page() -> str:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as response:
+            return str(response.read().decode())
+
+    html = page()
+    assert "<title>MazeSolver: robosc live view</title>" in html and 'id="Platform::ready"' in html
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/events", timeout=5) as stream:
+        scan.publish(_scan([0.3] + [5.0] * 359))
+        seen: list[str] = []
+        end = time.monotonic() + 10
+        while time.monotonic() < end and not any('"event": "turn_left"' in line for line in seen):
+            ros2.spin(0.01)
+            seen.append(stream.readline().decode())
+    turn = next(line for line in seen if '"event": "turn_left"' in line)
+    record = json.loads(turn.removeprefix("data: "))
+    assert record["state"]["automata"]["Platform"] == "turning"
+    assert record["controllable"] is True and record["data"] == 90
+    assert node.poll() is None

@@ -18,12 +18,25 @@ MODE = click.option(
 )
 
 
-def _write_package(plan: object, ros: int, mode: str, output: Path, file: str, include: tuple[str, ...]) -> list[Path]:
+def live_page(result: object) -> str | None:
+    """The live view's page, or None (with a note) when Graphviz is not installed."""
+    from robosc.debug.live import render_page
+
+    try:
+        return render_page(result)  # type: ignore[arg-type]
+    except Exception as exc:  # graphviz.ExecutableNotFound and its kind
+        click.echo(f"robosc: note: no live view page in the package (Graphviz: {exc})", err=True)
+        return None
+
+
+def _write_package(
+    plan: object, ros: int, mode: str, output: Path, file: str, include: tuple[str, ...], page: str | None = None
+) -> list[Path]:
     from robosc.codegen.ros import generate as generate_package
     from robosc.runtime.plan import PlanError
 
     try:
-        return generate_package(plan, ros, mode, output)  # type: ignore[arg-type]
+        return generate_package(plan, ros, mode, output, page)  # type: ignore[arg-type]
     except PlanError as exc:
         from robosc.api import check_file
         from robosc.language.diagnostics import error, render_text
@@ -50,8 +63,8 @@ def _write_package(plan: object, ros: int, mode: str, output: Path, file: str, i
 @include_option
 def generate(file: str, ros: str, mode: str, output: str, include: tuple[str, ...]) -> None:
     """Generate a ROS package running the synthesized supervisor."""
-    _, plan = supervised(file, include, "code generation")
-    written = _write_package(plan, int(ros), mode, Path(output), file, include)
+    result, plan = supervised(file, include, "code generation")
+    written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result))
     click.echo(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
     raise exit_with(EXIT_OK)
 
@@ -76,9 +89,10 @@ def build(file: str, output: str, mode: str, include: tuple[str, ...]) -> None:
         f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "
         f"{result.reachable_states:,} reachable states, {len(result.added_guards)} added guards"
     )
+    page = live_page(result)
     for ros in (1, 2):
         target = out / f"ros{ros}"
-        written = _write_package(plan, ros, mode, target, file, include)
+        written = _write_package(plan, ros, mode, target, file, include, page)
         console.print(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
     try:
         module = out / f"{module_name(plan)}.py"

@@ -22,6 +22,7 @@ import click
 
 from robosc.cli.check import check
 from robosc.cli.cif import cif
+from robosc.cli.debug import diagram, log_command, plot
 from robosc.cli.fmt import fmt
 from robosc.cli.generate import build, generate
 from robosc.cli.simulate import simulate
@@ -43,6 +44,9 @@ cli.add_command(cif)
 cli.add_command(simulate)
 cli.add_command(generate)
 cli.add_command(build)
+cli.add_command(plot)
+cli.add_command(diagram)
+cli.add_command(log_command)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

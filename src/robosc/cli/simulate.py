@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import random
 import sys
-from typing import TYPE_CHECKING, TextIO
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, TextIO
 
 import click
 
@@ -27,6 +28,7 @@ HELP = """commands:
   EVENT [DATA]          deliver an uncontrollable event; DATA is JSON ({"ranges": [0.5]}, 0.3, true)
                         or, for enum-typed data, an enum value (wall_front)
   expect NAME VALUE     stop unless an automaton / variable has this value
+  sleep SECONDS         wait (to follow a script in the live view)
   state                 show the state again
   help, quit"""
 
@@ -37,7 +39,23 @@ HELP = """commands:
 @click.option("--random", "steps", type=click.IntRange(min=0), help="Run N random steps (ticks and robot events).")
 @click.option("--seed", type=int, default=None, help="Seed for the controller's choices and --random.")
 @click.option(
-    "--log", "log_path", type=click.Path(dir_okay=False), help="Write every event as JSON Lines to this file."
+    "--rate",
+    type=click.FloatRange(min=0.0, min_open=True),
+    help="With --random: steps per second (default: as fast as possible).",
+)
+@click.option(
+    "--log",
+    "log_path",
+    type=click.Path(dir_okay=False),
+    help="Write every event to this file: JSON Lines, or MCAP if it ends in .mcap.",
+)
+@click.option("--view", is_flag=True, help="Serve the live view on 127.0.0.1 (see --port) while simulating.")
+@click.option(
+    "--port",
+    type=click.IntRange(0, 65535),
+    default=8765,
+    show_default=True,
+    help="Port of the live view (0: any free one).",
 )
 @click.option("--quiet", is_flag=True, help="Print only problems and the final state.")
 @include_option
@@ -46,7 +64,10 @@ def simulate(
     script: str | None,
     steps: int | None,
     seed: int | None,
+    rate: float | None,
     log_path: str | None,
+    view: bool,
+    port: int,
     quiet: bool,
     include: tuple[str, ...],
 ) -> None:
@@ -59,29 +80,73 @@ def simulate(
     result, plan = supervised(file, include, "simulation")
     from robosc.runtime.simulator import Simulator, Violation
 
+    sinks: list[Callable[[dict[str, Any]], None]] = []
+    closers: list[Callable[[], None]] = []
     log: TextIO | None = None
     if log_path is not None:
         try:
-            log = open(log_path, "w", encoding="utf-8")  # noqa: SIM115 (closed below)
+            if log_path.endswith(".mcap"):
+                from robosc.debug.eventlog import McapLog
+
+                handle = open(log_path, "wb")  # noqa: SIM115 (closed below)
+                mcap = McapLog(handle)
+                sinks.append(mcap.write)
+                closers += [mcap.close, handle.close]
+            else:
+                log = open(log_path, "w", encoding="utf-8")  # noqa: SIM115 (closed below)
+                closers.append(log.close)
         except OSError as exc:
             raise input_problem(f"{log_path}: cannot write: {exc.strerror or exc}") from None
-    sim = Simulator(result, plan, seed=seed, log=log)
+    live = None
+    if view:
+        from robosc.debug.live import render_page
+        from robosc.debug.live_server import LiveView
+
+        try:
+            live = LiveView(render_page(result), port=port)
+        except OSError as exc:
+            raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
+        sinks.append(live.publish)
+        closers.append(live.close)
+        click.echo(f"live view: {live.url}")
+
+    def on_event(record: dict[str, Any]) -> None:
+        for sink in sinks:
+            sink(record)
+
+    sim = Simulator(result, plan, seed=seed, log=log, on_event=on_event if sinks else None)
+    if live is not None:
+        live.last = {"time": 0.0, "event": None, "controllable": False, "data": None, "state": sim.snapshot()}
     try:
         if script is not None:
             code = _scripted(sim, script, quiet)
         elif steps is not None:
-            code = _random(sim, steps, seed, quiet)
+            code = _random(sim, steps, seed, quiet, rate)
         else:
             code = _interactive(sim)
+        if live is not None and code == EXIT_OK and (script is not None or steps is not None):
+            click.echo(f"still serving the live view on {live.url}; Ctrl-C to stop")
+            _show_state(sim)
+            _wait_forever()
     except Violation as violation:
         click.echo(f"robosc: violation at {violation}", err=True)
         code = EXIT_MODEL_ERRORS
     finally:
-        if log is not None:
-            log.close()
+        for close in closers:
+            close()
     if code == EXIT_OK:
         _show_state(sim)
     raise exit_with(code) from None
+
+
+def _wait_forever() -> None:
+    import time
+
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        return
 
 
 def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
@@ -115,10 +180,15 @@ def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
     return EXIT_OK
 
 
-def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool) -> int:
+def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool, rate: float | None = None) -> int:
+    import time
+
     rng = random.Random(seed)
-    for _ in range(steps):
+    start = time.monotonic()
+    for number in range(steps):
         _report(sim, sim.random_step(rng), quiet)
+        if rate is not None:
+            time.sleep(max(0.0, start + (number + 1) / rate - time.monotonic()))
     click.echo(
         f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable"
     )

@@ -222,14 +222,23 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
     )
 
 
-def generate(plan: Plan, ros: int, mode: str, output: Path) -> list[Path]:
-    """Write the ROS ``ros`` package for ``plan`` under ``output``; returns the files written."""
+def generate(plan: Plan, ros: int, mode: str, output: Path, live_page: str | None = None) -> list[Path]:
+    """Write the ROS ``ros`` package for ``plan`` under ``output``; returns the files written.
+    ``live_page`` is the live view's page (laid out at generation time), served by the node
+    when its ``view_port`` parameter is set."""
     rp = ros_plan(plan, ros, mode)
     env = environment()
     context = {"rp": rp, "plan": plan, "source_name": source_name(plan)}
     files: dict[str, str] = {}
     module_text = render_module(plan)
     node = f"{rp.package}_node"
+    from importlib.resources import files as package_files
+
+    live_server = package_files("robosc.debug").joinpath("live_server.py").read_text(encoding="utf-8")
+    where = "scripts" if ros == 1 else rp.package
+    files[f"{where}/robosc_live.py"] = live_server
+    if live_page is not None:
+        files[f"{where}/live_view.html"] = live_page
     if ros == 1:
         files[f"scripts/{node}.py"] = env.get_template("ros1/node.py.j2").render(**context)
         files[f"scripts/{rp.module}.py"] = module_text

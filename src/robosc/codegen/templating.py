@@ -21,6 +21,8 @@ def environment(package: str = "robosc.codegen") -> jinja2.Environment:
     )
     env.filters["py"] = _python_literal
     env.filters["doc"] = _docstring_text
+    env.filters["dot"] = _dot_string
+    env.filters["edge_label"] = _edge_label
     env.filters["xml"] = xml.sax.saxutils.escape
     env.filters["xmlattr"] = xml.sax.saxutils.quoteattr
     return env
@@ -36,3 +38,22 @@ def _python_literal(value: object) -> str:
 def _docstring_text(value: object) -> str:
     """Text from the model made safe inside a triple-quoted docstring."""
     return repr(str(value))[1:-1].replace('"', '\\"')
+
+
+def _dot_string(value: object) -> str:
+    """A Graphviz DOT quoted string."""
+    text = str(value).replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+    return f'"{text}"'
+
+
+def _edge_label(transition: object) -> str:
+    """An automaton edge's label: the event, the model's guard / assignments, and the
+    conditions the requirements and synthesis put on it (one per line)."""
+    import textwrap
+
+    lines = [str(getattr(transition, "event", ""))]
+    for prefix, attribute in (("", "detail"), ("needs: ", "required"), ("added: ", "added")):
+        value = getattr(transition, attribute, None)
+        if value:
+            lines += textwrap.wrap(prefix + str(value), 48, subsequent_indent="  ", break_long_words=False)
+    return _dot_string("\n".join(lines))

@@ -191,7 +191,8 @@ class Simulator:
         return self._checked(Outcome(tuple(self.events[before:])))
 
     def run(self, line: str) -> Outcome:
-        """One script line: ``tick``, an event name with optional data, or ``expect NAME VALUE``."""
+        """One script line: ``tick [N]``, an event name with optional data, ``expect NAME VALUE``
+        or ``sleep SECONDS`` (to watch a script in the live view)."""
         text = line.strip()
         if not text or text.startswith("#"):
             return Outcome(())
@@ -205,6 +206,13 @@ class Simulator:
             return Outcome(tuple(events))
         if word == "expect":
             return self.expect(rest)
+        if word == "sleep":
+            try:
+                seconds = float(rest)
+            except ValueError:
+                raise CommandError(f"sleep takes seconds, not '{rest}'") from None
+            time.sleep(max(0.0, min(seconds, 3600.0)))
+            return Outcome(())
         if word in self.module.CONTROLLABLE:
             if rest:
                 raise CommandError(f"{word} is controllable: the supervisor provides its data")

@@ -1,0 +1,188 @@
+"""Automaton diagrams: each component automaton and each communication plant as Graphviz
+DOT and SVG. Edges whose event the synthesized supervisor restricts (it added a
+condition) are drawn red, labelled with the added condition; edges your own
+requirements guard are orange, labelled with the requirement.
+
+Node and edge ids are stable (``Platform::ready``, ``Platform::e3``), so the live
+view can switch styles on the SVG without laying it out again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from robosc.codegen.templating import environment
+from robosc.language import model as m
+from robosc.language.render import render
+from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network
+from robosc.synthesis.result import SynthesisResult
+
+
+@dataclass(frozen=True)
+class Location:
+    id: str
+    name: str
+    initial: bool
+    marked: bool
+
+
+@dataclass(frozen=True)
+class Transition:
+    id: str
+    source: str  # location name
+    target: str
+    event: str  # the network event's name
+    controllable: bool
+    detail: str  # guard and assignments, as the model writes them ("" for none)
+    required: str | None  # the user's requirement on the event
+    added: str | None  # what synthesis added
+
+    @property
+    def restricted(self) -> bool:
+        return self.added is not None
+
+
+@dataclass(frozen=True)
+class Diagram:
+    name: str  # the automaton's name in the network
+    kind: str  # "component", "message", "service", "action"
+    locations: tuple[Location, ...]
+    transitions: tuple[Transition, ...]
+
+    @property
+    def file_stem(self) -> str:
+        return ("plant_" if self.kind != "component" else "") + self.name.replace(".", "_")
+
+
+def _event_of(network: Network, transition: m.Transition) -> Event:
+    if isinstance(transition, m.TauTransition):
+        return next(e for e in network.events if e.transition is transition)
+    c = transition.communication
+    for e in network.events:
+        if e.communication is not c:
+            continue
+        if e.kind is EventKind.MESSAGE:
+            if (transition.result is m.ResultKind.REQUEST) == e.controllable:
+                return e
+        elif e.kind.value == {"request": "trigger"}.get(transition.result.value, transition.result.value):
+            return e
+    raise KeyError(transition)
+
+
+def _detail(transition: m.Transition) -> str:
+    if isinstance(transition, m.TauTransition):
+        return f"if {render(transition.guard)}" if transition.guard is not None else ""
+    if not transition.assignments:
+        return ""
+    parts = []
+    for a in transition.assignments:
+        target = a.variable.name + "".join(
+            f".{s.property.name}" if isinstance(s, m.FieldStep) else f"[{s.index}]" for s in a.steps
+        )
+        parts.append(f"{target} := {render(a.value)}")
+    return "do " + ", ".join(parts)
+
+
+class _Builder:
+    def __init__(self, result: SynthesisResult) -> None:
+        self.result = result
+        self.network = result.network
+
+    def guards(self, event: Event) -> tuple[str | None, str | None]:
+        if not event.controllable:
+            return None, None
+        guard = self.result.guard(event.name) if self.result.ok else None
+        if guard is None:
+            return None, None
+        return (
+            render(guard.required) if guard.required is not None else None,
+            render(guard.added) if guard.added is not None else None,
+        )
+
+    def component(self, automaton: Automaton) -> Diagram:
+        component = automaton.component
+        assert component is not None and component.automaton is not None
+        name = automaton.name
+        locations = tuple(
+            Location(f"{name}::{s.name}", s.name, s is automaton.initial, s.marked) for s in automaton.locations
+        )
+        transitions: list[Transition] = []
+        for transition in component.automaton.transitions:
+            event = _event_of(self.network, transition)
+            required, added = self.guards(event)
+            sources = automaton.locations if transition.source is None else (transition.source,)
+            for source in sources:
+                target = transition.target or source
+                transitions.append(
+                    Transition(
+                        f"{name}::e{len(transitions)}",
+                        source.name,
+                        target.name,
+                        event.name,
+                        event.controllable,
+                        _detail(transition),
+                        required,
+                        added,
+                    )
+                )
+        return Diagram(name, "component", locations, tuple(transitions))
+
+    def plant(self, automaton: Automaton) -> Diagram:
+        name = automaton.name
+        locations = tuple(
+            Location(f"{name}::{s.name}", s.name, s is automaton.initial, s.marked) for s in automaton.locations
+        )
+        transitions: list[Transition] = []
+        for edge in automaton.edges:
+            required, added = self.guards(edge.event)
+            transitions.append(
+                Transition(
+                    f"{name}::e{len(transitions)}",
+                    edge.source.name,
+                    edge.target.name,
+                    edge.event.name,
+                    edge.event.controllable,
+                    "",
+                    required,
+                    added,
+                )
+            )
+        return Diagram(name, automaton.kind.value, locations, tuple(transitions))
+
+
+def diagrams(result: SynthesisResult) -> list[Diagram]:
+    """A diagram per component automaton, then one per communication plant."""
+    builder = _Builder(result)
+    out = [builder.component(a) for a in result.network.automata if a.kind is AutomatonKind.COMPONENT]
+    out += [
+        builder.plant(a)
+        for a in result.network.automata
+        if a.kind in (AutomatonKind.MESSAGE, AutomatonKind.SERVICE, AutomatonKind.ACTION)
+    ]
+    return out
+
+
+def dot(diagram: Diagram, title: bool = True) -> str:
+    return environment("robosc.debug").get_template("automaton.dot.j2").render(d=diagram, title=title)
+
+
+def svg(diagram: Diagram, title: bool = True) -> str:
+    """The diagram laid out by Graphviz (``dot``), as SVG text."""
+    import graphviz
+
+    return str(graphviz.Source(dot(diagram, title)).pipe(format="svg", encoding="utf-8"))
+
+
+def write_diagrams(result: SynthesisResult, output: str | Path) -> list[Path]:
+    """DOT and SVG files of every diagram under ``output``; returns the paths written."""
+    out = Path(output)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for d in diagrams(result):
+        dot_path = out / f"{d.file_stem}.dot"
+        dot_path.write_text(dot(d), encoding="utf-8")
+        svg_path = out / f"{d.file_stem}.svg"
+        svg_path.write_text(svg(d), encoding="utf-8")
+        written += [dot_path, svg_path]
+    return written

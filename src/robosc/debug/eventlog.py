@@ -1,0 +1,142 @@
+"""The event log: one record per event (time, event, controllable, data, the state after it).
+
+Written as JSON Lines by the simulator and by generated nodes (their ``event_log``
+parameter); also as MCAP (JSON-encoded messages on the channel ``/robosc/events``,
+with a JSON schema) so that Foxglove and the ROS bag tools open it.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, BinaryIO
+
+CHANNEL = "/robosc/events"
+SCHEMA = {
+    "title": "robosc.Event",
+    "type": "object",
+    "properties": {
+        "time": {"type": "number", "description": "seconds"},
+        "event": {"type": "string"},
+        "controllable": {"type": "boolean"},
+        "data": {},
+        "state": {
+            "type": "object",
+            "properties": {"automata": {"type": "object"}, "variables": {"type": "object"}},
+        },
+    },
+    "required": ["time", "event", "controllable"],
+}
+
+
+class LogError(Exception):
+    """The log cannot be read; the message names the file and line."""
+
+
+@dataclass(frozen=True)
+class Record:
+    time: float
+    event: str
+    controllable: bool
+    data: Any
+    state: dict[str, Any]
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "time": self.time,
+            "event": self.event,
+            "controllable": self.controllable,
+            "data": self.data,
+            "state": self.state,
+        }
+
+
+def _record(raw: Any, where: str) -> Record:
+    if not isinstance(raw, dict):
+        raise LogError(f"{where}: not an event record (a JSON object)")
+    try:
+        time = float(raw["time"])
+        event = str(raw["event"])
+        controllable = raw["controllable"]
+    except (KeyError, TypeError, ValueError) as error:
+        raise LogError(f"{where}: an event record needs time, event and controllable ({error})") from None
+    if not isinstance(controllable, bool):
+        raise LogError(f"{where}: 'controllable' must be true or false")
+    state = raw.get("state") or {}
+    return Record(time, event, controllable, raw.get("data"), state if isinstance(state, dict) else {})
+
+
+def read_log(path: str | Path) -> list[Record]:
+    """The records of a JSON Lines (``.jsonl``, ``.json``, ``.log``) or MCAP (``.mcap``) log."""
+    path = Path(path)
+    try:
+        if path.suffix == ".mcap":
+            with path.open("rb") as handle:
+                return list(_read_mcap(handle, str(path)))
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise LogError(f"{path}: cannot read: {error.strerror or error}") from None
+    except UnicodeDecodeError:
+        raise LogError(f"{path}: not UTF-8 text (an MCAP log must end in .mcap)") from None
+    records = []
+    for number, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            raw = json.loads(line)
+        except json.JSONDecodeError as error:
+            raise LogError(f"{path}:{number}:{error.colno}: not JSON: {error.msg}") from None
+        records.append(_record(raw, f"{path}:{number}:1"))
+    return records
+
+
+def _read_mcap(handle: BinaryIO, name: str) -> Iterator[Record]:
+    from mcap.exceptions import McapError
+    from mcap.reader import make_reader
+
+    try:
+        for _, channel, message in make_reader(handle).iter_messages(topics=[CHANNEL]):
+            yield _record(json.loads(message.data), f"{name}: message at {message.log_time} ns on {channel.topic}")
+    except (McapError, json.JSONDecodeError, ValueError) as error:
+        raise LogError(f"{name}: not a readable MCAP event log: {error}") from None
+
+
+def write_mcap(records: Iterable[Record | dict[str, Any]], handle: BinaryIO) -> int:
+    """Write records as MCAP; returns how many."""
+    writer = McapLog(handle)
+    count = 0
+    for record in records:
+        writer.write(record.as_json() if isinstance(record, Record) else record)
+        count += 1
+    writer.close()
+    return count
+
+
+class McapLog:
+    """An MCAP event log written one record at a time (the simulator's ``--log x.mcap``)."""
+
+    def __init__(self, handle: BinaryIO) -> None:
+        from mcap.writer import Writer
+
+        self.handle = handle
+        self.writer = Writer(handle)
+        self.writer.start(profile="", library="robosc")
+        schema = self.writer.register_schema("robosc.Event", "jsonschema", json.dumps(SCHEMA).encode())
+        self.channel = self.writer.register_channel(CHANNEL, "json", schema)
+        self.sequence = 0
+
+    def write(self, record: dict[str, Any]) -> None:
+        nanoseconds = int(float(record["time"]) * 1e9)
+        self.writer.add_message(
+            self.channel,
+            log_time=nanoseconds,
+            publish_time=nanoseconds,
+            sequence=self.sequence,
+            data=json.dumps(record, sort_keys=True).encode(),
+        )
+        self.sequence += 1
+
+    def close(self) -> None:
+        self.writer.finish()  # type: ignore[no-untyped-call]

@@ -1,0 +1,119 @@
+# -*- coding: utf-8 -*-
+"""The live view's web server: the page, and every event as a Server-Sent Event.
+
+Standard library only and Python 3.8 compatible: ``robosc generate`` copies this
+file into the ROS packages (as ``robosc_live.py``), so a node on the robot serves
+the page itself with nothing to install. Binds 127.0.0.1 unless told otherwise.
+
+    view = LiveView(page_html, port=8765)   # serves in a thread of its own
+    view.publish({"time": ..., "event": ..., "controllable": ..., "data": ..., "state": {...}})
+"""
+
+from __future__ import print_function
+
+import json
+import queue
+import threading
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from typing import Any, Dict, List, Optional, Union
+
+KEEPALIVE_SECONDS = 10.0
+QUEUE_SIZE = 2000  # events kept for a slow browser; older ones are dropped
+
+
+class LiveView(object):
+    def __init__(self, page: Union[str, bytes], port: int = 8765, host: str = "127.0.0.1") -> None:
+        self.page = page.encode("utf-8") if not isinstance(page, bytes) else page
+        self.clients: "List[queue.Queue[str]]" = []
+        self.lock = threading.Lock()
+        self.last: "Optional[Dict[str, Any]]" = None  # the latest record: a new browser starts from it
+        self.dropped = 0
+        view = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def log_message(self, format: str, *args: Any) -> None:  # quiet
+                pass
+
+            def do_GET(self) -> None:
+                path = self.path.split("?", 1)[0]
+                if path in ("/", "/index.html"):
+                    self.send_response(200)
+                    self.send_header("Content-Type", "text/html; charset=utf-8")
+                    self.send_header("Content-Length", str(len(view.page)))
+                    self.send_header("Cache-Control", "no-store")
+                    self.end_headers()
+                    self.wfile.write(view.page)
+                elif path == "/events":
+                    view.stream(self)
+                elif path == "/state":
+                    body = json.dumps(view.last).encode("utf-8")
+                    self.send_response(200)
+                    self.send_header("Content-Type", "application/json")
+                    self.send_header("Content-Length", str(len(body)))
+                    self.end_headers()
+                    self.wfile.write(body)
+                else:
+                    self.send_error(404)
+
+        self.server = ThreadingHTTPServer((host, port), Handler)
+        self.server.daemon_threads = True
+        self.port = self.server.server_address[1]
+        self.thread = threading.Thread(target=self.server.serve_forever, name="robosc-live-view")
+        self.thread.daemon = True
+        self.thread.start()
+
+    @property
+    def url(self) -> str:
+        return "http://%s:%d/" % (str(self.server.server_address[0]), self.port)
+
+    def publish(self, record: Dict[str, Any]) -> None:
+        """Send an event record to every open page (never blocks the caller)."""
+        text = json.dumps(record, sort_keys=True, default=str)
+        with self.lock:
+            self.last = record
+            clients = list(self.clients)
+        for q in clients:
+            try:
+                q.put_nowait(text)
+            except queue.Full:
+                self.dropped += 1
+
+    def stream(self, handler: BaseHTTPRequestHandler) -> None:
+        q: "queue.Queue[str]" = queue.Queue(QUEUE_SIZE)
+        with self.lock:
+            self.clients.append(q)
+            last = self.last
+        try:
+            handler.send_response(200)
+            handler.send_header("Content-Type", "text/event-stream")
+            handler.send_header("Cache-Control", "no-store")
+            handler.end_headers()
+            handler.wfile.write(b"retry: 1000\n\n")
+            if last is not None:
+                handler.wfile.write(("event: state\ndata: %s\n\n" % json.dumps(last, default=str)).encode("utf-8"))
+            handler.wfile.flush()
+            while True:
+                try:
+                    text = q.get(timeout=KEEPALIVE_SECONDS)
+                except queue.Empty:
+                    handler.wfile.write(b": keepalive\n\n")
+                    handler.wfile.flush()
+                    continue
+                lines = [text]
+                while len(lines) < 200:  # send what piled up in one write
+                    try:
+                        lines.append(q.get_nowait())
+                    except queue.Empty:
+                        break
+                handler.wfile.write("".join("data: %s\n\n" % t for t in lines).encode("utf-8"))
+                handler.wfile.flush()
+        except (BrokenPipeError, ConnectionResetError, OSError):
+            pass
+        finally:
+            with self.lock:
+                if q in self.clients:
+                    self.clients.remove(q)
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()

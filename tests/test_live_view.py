@@ -1,0 +1,169 @@
+"""The live view in a real browser: Debian's headless Chromium, driven through chromedriver
+(selenium), opens the page while the simulator runs a script; the highlighted state
+and the variables must change as the script says. The test saves a screenshot."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ros_support import free_port, unavailable, wait_until
+
+ROOT = Path(__file__).resolve().parent.parent
+CHROMIUM = "/usr/bin/chromium"
+CHROMEDRIVER = "/usr/bin/chromedriver"
+
+
+@pytest.fixture
+def browser(tmp_path: Path) -> Iterator[Any]:
+    if not (os.path.exists(CHROMIUM) and os.path.exists(CHROMEDRIVER)):
+        unavailable("Chromium (Debian's chromium and chromium-driver)")
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for flag in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--window-size=1500,1100",
+        f"--user-data-dir={tmp_path / 'chromium'}",
+    ):
+        options.add_argument(flag)
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    try:
+        yield driver
+    finally:
+        driver.quit()
+
+
+def simulate(tmp_path: Path, port: int, *args: str) -> subprocess.Popen[bytes]:
+    log = open(tmp_path / "simulate.log", "wb")  # noqa: SIM115 (closed with the process)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "robosc", "simulate", *args, "--view", "--port", str(port)],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
+    assert wait_until(lambda: _serving(port), 30), (tmp_path / "simulate.log").read_text()
+    return process
+
+
+def _serving(port: int) -> bool:
+    import urllib.request
+
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=1) as response:
+            return bool(response.status == 200)
+    except OSError:
+        return False
+
+
+def current(driver: Any, automaton: str) -> list[str]:
+    """The locations the page highlights for one automaton."""
+    return list(
+        driver.execute_script(
+            "return Array.from(document.querySelectorAll('#card\\\\:' + CSS.escape(arguments[0]) + ' g.node.current'))"
+            ".map(g => g.id.split('::')[1]);",
+            automaton,
+        )
+    )
+
+
+def text(driver: Any, element_id: str) -> str:
+    return str(driver.execute_script("return document.getElementById(arguments[0]).textContent;", element_id))
+
+
+def test_live_view_follows_a_scripted_run(browser: Any, tmp_path: Path) -> None:
+    script = tmp_path / "maze.txt"
+    script.write_text(
+        "sleep 4\n"  # the browser connects
+        "tick\n"
+        "sleep 2\n"
+        'scan_front {"ranges": [0.3]}\n'
+        "sleep 2\n"
+        "tick\n"  # turn left
+        "sleep 2\n"
+        "rotate_done\n"
+        'scan_front {"ranges": [3.0]}\n'
+        "sleep 2\n"
+    )
+    port = free_port()
+    process = simulate(tmp_path, port, str(ROOT / "examples/maze_solver.rscd"), "--script", str(script), "--seed", "1")
+    try:
+        browser.get(f"http://127.0.0.1:{port}/")
+        assert wait_until(lambda: text(browser, "status") == "live", 10)
+        assert wait_until(lambda: current(browser, "Platform") == ["ready"], 5)
+        assert current(browser, "Distance") == ["sensing"]
+        assert wait_until(lambda: text(browser, "var:Distance.front") == "wall_front", 12), "the scan did not show"
+        assert current(browser, "Platform") == ["ready"]
+        assert wait_until(lambda: current(browser, "Platform") == ["turning"], 6), "the turn did not show"
+        assert text(browser, "where:Platform") == "turning"
+        assert text(browser, "last") == "turn_left"
+        shot = tmp_path / "live_view.png"
+        browser.save_screenshot(str(shot))
+        assert shot.stat().st_size > 10_000
+        if os.environ.get("ROBOSC_SCREENSHOT"):
+            shutil.copy(shot, os.environ["ROBOSC_SCREENSHOT"])
+        assert wait_until(lambda: current(browser, "Platform") == ["ready"], 6)
+        assert wait_until(lambda: text(browser, "var:Distance.front") == "no_wall_front", 6)
+        feed = browser.execute_script(
+            "return Array.from(document.querySelectorAll('#feed li')).map(li => li.textContent);"
+        )
+        assert feed[:3] == ["scan_front no_wall_front", "rotate_done", "turn_left 90"]  # enum data, converted
+    finally:
+        process.terminate()
+        process.wait(timeout=10)
+
+
+def test_live_view_keeps_up_with_100_events_per_second(browser: Any, tmp_path: Path) -> None:
+    port = free_port()
+    process = simulate(
+        tmp_path,
+        port,
+        str(ROOT / "examples/pick_and_light.rscd"),
+        "--random",
+        "1500",
+        "--rate",
+        "100",
+        "--seed",
+        "3",
+        "--quiet",
+    )
+    try:
+        browser.get(f"http://127.0.0.1:{port}/")
+        assert wait_until(lambda: text(browser, "status") == "live", 10)
+        time.sleep(3)
+        first = int(text(browser, "count"))
+        started = time.monotonic()
+        time.sleep(5)
+        second = int(text(browser, "count"))
+        per_second = (second - first) / (time.monotonic() - started)
+        # the simulator takes 100 steps per second; a step is 0 to 3 events
+        assert per_second > 50, per_second
+        # the page stays responsive: a script round trip and a screenshot are quick
+        begin = time.monotonic()
+        for _ in range(10):
+            browser.execute_script("return document.getElementById('count').textContent;")
+        assert (time.monotonic() - begin) / 10 < 0.25
+        lag = browser.execute_script("return pending.length;")
+        assert lag < 50  # events are drawn as they come, not piling up
+        components = ["Camera", "Arm", "Light", "Speaker", "Stop"]
+        assert all(len(current(browser, c)) == 1 for c in components)
+    finally:
+        process.terminate()
+        process.wait(timeout=10)
