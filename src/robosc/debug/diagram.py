@@ -37,6 +37,7 @@ class Transition:
     detail: str  # guard and assignments, as the model writes them ("" for none)
     required: str | None  # the user's requirement on the event
     added: str | None  # what synthesis added
+    port: str | None = None  # for a self-loop: the side of the node it is drawn on
 
     @property
     def restricted(self) -> bool:
@@ -151,6 +152,24 @@ class _Builder:
         return Diagram(name, automaton.kind.value, locations, tuple(transitions))
 
 
+SIDES = ("n", "s", "e", "w", "ne", "se", "nw", "sw")
+
+
+def _spread_loops(diagram: Diagram) -> Diagram:
+    """Self-loops of one location on different sides, so their labels do not overlap."""
+    count: dict[str, int] = {}
+    transitions = []
+    for t in diagram.transitions:
+        if t.source == t.target:
+            n = count.get(t.source, 0)
+            count[t.source] = n + 1
+            t = Transition(
+                t.id, t.source, t.target, t.event, t.controllable, t.detail, t.required, t.added, SIDES[n % len(SIDES)]
+            )
+        transitions.append(t)
+    return Diagram(diagram.name, diagram.kind, diagram.locations, tuple(transitions))
+
+
 def diagrams(result: SynthesisResult) -> list[Diagram]:
     """A diagram per component automaton, then one per communication plant."""
     builder = _Builder(result)
@@ -160,7 +179,7 @@ def diagrams(result: SynthesisResult) -> list[Diagram]:
         for a in result.network.automata
         if a.kind in (AutomatonKind.MESSAGE, AutomatonKind.SERVICE, AutomatonKind.ACTION)
     ]
-    return out
+    return [_spread_loops(d) for d in out]
 
 
 def dot(diagram: Diagram, title: bool = True) -> str:
