@@ -37,22 +37,52 @@ def main() -> None:
             port = free_port()
             steps = int(rate * (args.seconds + 10))
             sim = subprocess.Popen(
-                [sys.executable, "-m", "robosc", "simulate", str(ROOT / "examples/pick_and_light.rscd"), "--random",
-                 str(steps), "--rate", str(rate), "--seed", "1", "--quiet", "--view", "--port", str(port)],
-                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                [
+                    sys.executable,
+                    "-m",
+                    "robosc",
+                    "simulate",
+                    str(ROOT / "examples/pick_and_light.rscd"),
+                    "--random",
+                    str(steps),
+                    "--rate",
+                    str(rate),
+                    "--seed",
+                    "1",
+                    "--quiet",
+                    "--view",
+                    "--port",
+                    str(port),
+                ],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
             )
             options = webdriver.ChromeOptions()
             options.binary_location = "/usr/bin/chromium"
-            for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                         "--disable-background-networking", "--no-first-run", f"--user-data-dir={tmp}/c"):
+            for flag in (
+                "--headless=new",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-dev-shm-usage",
+                "--disable-background-networking",
+                "--no-first-run",
+                f"--user-data-dir={tmp}/c",
+            ):
                 options.add_argument(flag)
             driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
             try:
                 time.sleep(2)
                 driver.get(f"http://127.0.0.1:{port}/")
-                assert wait_until(lambda: driver.execute_script("return document.getElementById('status').textContent") == "live", 10)
+                page = driver
+
+                def live(page: webdriver.Chrome = page) -> bool:
+                    return bool(page.execute_script("return document.getElementById('status').textContent") == "live")
+
+                def count(page: webdriver.Chrome = page) -> int:
+                    return int(page.execute_script("return count;"))
+
+                assert wait_until(live, 10)
                 time.sleep(2)
-                count = lambda: int(driver.execute_script("return count;"))  # noqa: E731
                 first, start = count(), time.monotonic()
                 trips = []
                 while time.monotonic() - start < args.seconds:
