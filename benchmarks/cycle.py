@@ -294,17 +294,8 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
                 "_rate:=10.0",
                 "_seed:=1",
             ]
-            driver = NODE_DRIVER.format(
-                path=str(scripts),
-                ros_setup=f"sys.argv[1:] = {args!r}\nimport rospy",
-                module=module,
-                scenario=json.dumps(scenario),
-                node_args="",
-                samples=samples,
-                out=str(out),
-                stop='rospy.signal_shutdown("done")',
-                spin="rospy.spin()",
-            )
+            path, setup = scripts, f"sys.argv[1:] = {args!r}\nimport rospy"
+            stop, spin = 'rospy.signal_shutdown("done")', "rospy.spin()"
             robot = ROBOT_ROS1.format(gap=gap)
         else:
             domain = 150 + (os.getpid() % 50)
@@ -320,18 +311,20 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
                 "-p",
                 "seed:=1",
             ]
-            driver = NODE_DRIVER.format(
-                path=str(package),
-                ros_setup=f"import rclpy\nrclpy.init(args=['bench', *{params!r}])",
-                module=module,
-                scenario=json.dumps(scenario),
-                node_args="",
-                samples=samples,
-                out=str(out),
-                stop="raise SystemExit(0)",
-                spin="rclpy.spin(node.node)",
-            )
+            path, setup = package, f"import rclpy\nrclpy.init(args=['bench', *{params!r}])"
+            stop, spin = "raise SystemExit(0)", "rclpy.spin(node.node)"
             robot = ROBOT_ROS2.format(gap=gap)
+        driver = NODE_DRIVER.format(
+            path=str(path),
+            ros_setup=setup,
+            module=module,
+            scenario=json.dumps(scenario),
+            node_args="",
+            samples=samples,
+            out=str(out),
+            stop=stop,
+            spin=spin,
+        )
         processes.append(subprocess.Popen([python, "-c", driver], env=env, stdout=logs, stderr=logs))
         time.sleep(2.0)
         processes.append(

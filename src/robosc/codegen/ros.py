@@ -23,6 +23,11 @@ MODES = ("controller", "supervisor")
 CONTROLLER_PREFIX = "/robosc/controller"
 
 
+def controller_side(name: str) -> str:
+    """Where a supervision layer meets the controller: ``/cmd_vel`` -> ``/robosc/controller/cmd_vel``."""
+    return CONTROLLER_PREFIX + (name if name.startswith("/") else "/" + name)
+
+
 @dataclass(frozen=True)
 class Import:
     module: str  # "geometry_msgs.msg"
@@ -40,7 +45,7 @@ class Topic:
 
     @property
     def controller_side(self) -> str:
-        return CONTROLLER_PREFIX + (self.name if self.name.startswith("/") else "/" + self.name)
+        return controller_side(self.name)
 
 
 @dataclass(frozen=True)
@@ -60,7 +65,7 @@ class Call:
 
     @property
     def controller_side(self) -> str:
-        return CONTROLLER_PREFIX + (self.name if self.name.startswith("/") else "/" + self.name)
+        return controller_side(self.name)
 
 
 @dataclass(frozen=True)
