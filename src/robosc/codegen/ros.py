@@ -34,14 +34,10 @@ class Import:
     name: str  # "Twist"
 
 
-@dataclass(frozen=True)
-class Topic:
-    name: str  # the ROS name, e.g. "/cmd_vel"
-    attribute: str  # Python attribute suffix for the publisher / subscription
-    type: str  # the message class, e.g. "Twist"
-    basic: bool  # a std_msgs wrapper: the data is in ``.data``
-    empty: bool  # std_msgs/Empty: no data
-    events: tuple[EventPlan, ...]  # the events carried on this topic
+class _Remapped:
+    """Something a supervision layer offers the controller under a remapped name."""
+
+    name: str
 
     @property
     def controller_side(self) -> str:
@@ -49,7 +45,17 @@ class Topic:
 
 
 @dataclass(frozen=True)
-class Call:
+class Topic(_Remapped):
+    name: str  # the ROS name, e.g. "/cmd_vel"
+    attribute: str  # Python attribute suffix for the publisher / subscription
+    type: str  # the message class, e.g. "Twist"
+    basic: bool  # a std_msgs wrapper: the data is in ``.data``
+    empty: bool  # std_msgs/Empty: no data
+    events: tuple[EventPlan, ...]  # the events carried on this topic
+
+
+@dataclass(frozen=True)
+class Call(_Remapped):
     """A service or action client."""
 
     communication: Communication
@@ -62,10 +68,6 @@ class Call:
     error: EventPlan
     feedback: EventPlan | None = None
     cancel: EventPlan | None = None
-
-    @property
-    def controller_side(self) -> str:
-        return controller_side(self.name)
 
 
 @dataclass(frozen=True)
