@@ -151,9 +151,9 @@ def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -
 
 
 def plan_supervisor(result: SynthesisResult) -> Plan:
-    """Lay out a successful synthesis result for code generation and simulation.
-    Raises :class:`robosc.runtime.plan.PlanError` (with the model span) when the model
-    cannot run on ROS as it is, e.g. a service that links no interface."""
+    """Lay out a successful synthesis result for code generation and simulation
+    (``robosc.codegen.ros.generate`` raises ``RosError``, with the model span, when the
+    model cannot run on ROS as it is, e.g. a service that links no interface)."""
     from robosc.runtime.plan import plan
 
     return plan(result)

@@ -59,22 +59,13 @@ def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
 
 def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[SynthesisResult, Plan]:
     """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
-    printed) when no supervisor exists or the model cannot run as it is."""
+    printed) when no supervisor exists."""
     from robosc.api import plan_supervisor, synthesize_model
     from robosc.cli.synthesize import print_result
-    from robosc.runtime.plan import PlanError
 
     model = load_robot(file, include, purpose)
     result = synthesize_model(model)
     if not result.ok:
         print_result(result)
         raise exit_with(EXIT_MODEL_ERRORS)
-    try:
-        return result, plan_supervisor(result)
-    except PlanError as exc:
-        from robosc.api import check_file
-        from robosc.language.diagnostics import error, render_text
-
-        sources = check_file(file, include).sources
-        click.echo(render_text(error(exc.span, str(exc), "runtime"), sources), err=True)  # type: ignore[arg-type]
-        raise exit_with(EXIT_MODEL_ERRORS) from None
+    return result, plan_supervisor(result)

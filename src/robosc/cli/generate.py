@@ -32,17 +32,17 @@ def live_page(result: object) -> str | None:
 def _write_package(
     plan: object, ros: int, mode: str, output: Path, file: str, include: tuple[str, ...], page: str | None = None
 ) -> list[Path]:
+    from robosc.codegen.ros import RosError
     from robosc.codegen.ros import generate as generate_package
-    from robosc.runtime.plan import PlanError
 
     try:
         return generate_package(plan, ros, mode, output, page)  # type: ignore[arg-type]
-    except PlanError as exc:
+    except RosError as exc:
         from robosc.api import check_file
         from robosc.language.diagnostics import error, render_text
 
         sources = check_file(file, include).sources
-        click.echo(render_text(error(exc.span, str(exc), "runtime"), sources), err=True)  # type: ignore[arg-type]
+        click.echo(render_text(error(exc.span, str(exc), "ros"), sources), err=True)
         raise exit_with(EXIT_MODEL_ERRORS) from None
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None

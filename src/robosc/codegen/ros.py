@@ -13,14 +13,24 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
+from robosc.language.source import Span
 from robosc.runtime.module import module_name, render_module, source_name
-from robosc.runtime.plan import Communication, EventPlan, Plan, PlanError
+from robosc.runtime.plan import Communication, EventPlan, Plan
 
 # basic data without an interface: std_msgs (SEMANTICS.md section 7)
 STD_MSGS = {"string": "String", "boolean": "Bool", "integer": "Int64", "double": "Float64", "none": "Empty"}
 MODES = ("controller", "supervisor")
 # topics of a supervision layer: the controller's side of each remapped topic
 CONTROLLER_PREFIX = "/robosc/controller"
+
+
+class RosError(Exception):
+    """The model cannot run on ROS as it is (a service without an interface, one topic with
+    two types); ``span`` is the model text to point at."""
+
+    def __init__(self, message: str, span: Span) -> None:
+        super().__init__(message)
+        self.span = span
 
 
 def controller_side(name: str) -> str:
@@ -107,13 +117,13 @@ def _check_interface(c: Communication) -> None:
     if c.package is not None and c.ros_type is not None:
         return
     if c.kind in ("service", "action"):
-        raise PlanError(
+        raise RosError(
             f"{c.kind} '{c.name}' needs an interface ('links ...') to run on ROS: "
             f"robosc cannot tell which ROS {'srv' if c.kind == 'service' else 'action'} type to use",
             c.span,
         )
     if c.data_kind == "object":
-        raise PlanError(
+        raise RosError(
             f"message '{c.name}' carries an object but links no interface: "
             "robosc cannot tell which ROS message type to use",
             c.span,
@@ -157,7 +167,7 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
             key = (c.kind, c.ros_name)
             previous = topic_types.setdefault(key, (type_name, basic, empty))
             if previous[0] != type_name:
-                raise PlanError(
+                raise RosError(
                     f"'{c.name}' uses topic {c.ros_name} with type {type_name}, "
                     f"but another communication uses it with {previous[0]}",
                     c.span,

@@ -15,7 +15,7 @@ from pathlib import Path
 from robosc.codegen.templating import environment
 from robosc.language import model as m
 from robosc.language.render import render
-from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network
+from robosc.plant.network import Automaton, AutomatonKind, Event, event_of
 from robosc.synthesis.result import SynthesisResult
 
 
@@ -54,21 +54,6 @@ class Diagram:
     @property
     def file_stem(self) -> str:
         return ("plant_" if self.kind != "component" else "") + self.name.replace(".", "_")
-
-
-def _event_of(network: Network, transition: m.Transition) -> Event:
-    if isinstance(transition, m.TauTransition):
-        return next(e for e in network.events if e.transition is transition)
-    c = transition.communication
-    for e in network.events:
-        if e.communication is not c:
-            continue
-        if e.kind is EventKind.MESSAGE:
-            if (transition.result is m.ResultKind.REQUEST) == e.controllable:
-                return e
-        elif e.kind.value == {"request": "trigger"}.get(transition.result.value, transition.result.value):
-            return e
-    raise KeyError(transition)
 
 
 def _detail(transition: m.Transition) -> str:
@@ -110,7 +95,7 @@ class _Builder:
         )
         transitions: list[Transition] = []
         for transition in component.automaton.transitions:
-            event = _event_of(self.network, transition)
+            event = event_of(self.network, transition)
             required, added = self.guards(event)
             sources = automaton.locations if transition.source is None else (transition.source,)
             for source in sources:

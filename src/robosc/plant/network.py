@@ -114,3 +114,34 @@ class Network:
 
     def event(self, name: str) -> Event:
         return next(e for e in self.events if e.name == name)
+
+
+def received_type(event: Event) -> m.DataType | None:
+    """The type of the data the controller receives with an uncontrollable event
+    (a message's, a response's or a feedback's); None for the other events."""
+    c = event.communication
+    if c is None or event.controllable:
+        return None
+    if isinstance(c, m.Message):
+        return c.type
+    if event.kind is EventKind.FEEDBACK and isinstance(c, m.Action):
+        return c.feedback_type
+    if event.kind is EventKind.RESPONSE:
+        return c.response_type
+    return None
+
+
+def event_of(network: Network, transition: m.Transition) -> Event:
+    """The network event a component transition synchronises with."""
+    if isinstance(transition, m.TauTransition):
+        return next(e for e in network.events if e.transition is transition)
+    c = transition.communication
+    for e in network.events:
+        if e.communication is not c:
+            continue
+        if e.kind is EventKind.MESSAGE:
+            if (transition.result is m.ResultKind.REQUEST) == e.controllable:
+                return e
+        elif e.kind.value == {"request": "trigger"}.get(transition.result.value, transition.result.value):
+            return e
+    raise KeyError(transition)

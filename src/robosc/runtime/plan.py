@@ -17,20 +17,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from robosc.language import model as m
-from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind
+from robosc.language.source import Span
+from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
 from robosc.runtime.pyexpr import Names, conjunction, constant, identifier, python
 from robosc.synthesis.result import SynthesisResult
 
 K = EventKind
-R = m.ResultKind
-
-
-class PlanError(Exception):
-    """The model cannot be turned into run-time code (e.g. a service without an interface)."""
-
-    def __init__(self, message: str, span: object) -> None:
-        super().__init__(message)
-        self.span = span
 
 
 @dataclass(frozen=True)
@@ -98,7 +90,7 @@ class Communication:
     package: str | None  # ROS package of the linked interface
     ros_type: str | None  # the linked interface's type name
     data_kind: str  # messages: "string", "boolean", "integer", "double", "none" or "object"
-    span: object
+    span: Span
 
 
 @dataclass(frozen=True)
@@ -355,7 +347,7 @@ class _Planner:
                     )
                 )
                 continue
-            if self.network_event(transition) is not event:
+            if event_of(self.network, transition) is not event:
                 continue
             branches.append(
                 Branch(
@@ -366,18 +358,6 @@ class _Planner:
                 )
             )
         return Part(self.automaton_field[automaton], automaton.name, tuple(branches))
-
-    def network_event(self, transition: m.ResultTransition) -> Event:
-        c = transition.communication
-        for e in self.network.events:
-            if e.communication is not c:
-                continue
-            if e.kind is K.MESSAGE:
-                if (transition.result is R.REQUEST) == e.controllable:
-                    return e
-            elif e.kind.value == {R.REQUEST: "trigger"}.get(transition.result, transition.result.value):
-                return e
-        raise KeyError(transition)
 
     def plant_part(self, event: Event, automaton: Automaton) -> Part:
         branches = tuple(
@@ -430,7 +410,7 @@ class _Planner:
         signature = None
         if event.communication is not None:
             communication = self.communications[event.communication]
-            t = self.received_type(event)
+            t = received_type(event)
             if isinstance(t, m.EnumType):
                 convert = self.conversion(t).function
             is_sent = event.kind in (K.MESSAGE, K.TRIGGER) and event.controllable
@@ -453,19 +433,6 @@ class _Planner:
             data,
             signature,
         )
-
-    @staticmethod
-    def received_type(event: Event) -> m.DataType | None:
-        c = event.communication
-        if c is None or event.controllable:
-            return None
-        if isinstance(c, m.Message):
-            return c.type
-        if event.kind is K.FEEDBACK and isinstance(c, m.Action):
-            return c.feedback_type
-        if event.kind is K.RESPONSE:
-            return c.response_type
-        return None
 
     # -- communications and data ---------------------------------------------------------
     def communication(self, component: m.Component, c: m.Communication) -> Communication:

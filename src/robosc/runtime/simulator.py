@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Any, TextIO
 
 from robosc.language import model as m
-from robosc.plant.network import Network
+from robosc.plant.network import Network, received_type
 from robosc.runtime.module import module_name, render_module
 from robosc.runtime.plan import Plan
 from robosc.synthesis.evaluate import Undefined, evaluate
@@ -239,17 +239,7 @@ class Simulator:
         return self.module.Data.wrap(parsed), True
 
     def received_enum(self, name: str) -> m.EnumType | None:
-        event = self.network.event(name)
-        c = event.communication
-        if c is None:
-            return None
-        t: m.DataType | None = None
-        if isinstance(c, m.Message):
-            t = c.type
-        elif event.kind.value == "response":
-            t = c.response_type
-        elif event.kind.value == "feedback" and isinstance(c, m.Action):
-            t = c.feedback_type
+        t = received_type(self.network.event(name))
         return t if isinstance(t, m.EnumType) else None
 
     def expect(self, text: str) -> Outcome:
@@ -279,15 +269,7 @@ class Simulator:
 
     def random_data(self, name: str, rng: random.Random) -> object:
         """Random data of the type the event carries (plain values, Data objects, lists)."""
-        event = self.network.event(name)
-        c = event.communication
-        t: m.DataType | None = None
-        if isinstance(c, m.Message):
-            t = c.type
-        elif isinstance(c, m.Service | m.Action) and event.kind.value == "response":
-            t = c.response_type
-        elif isinstance(c, m.Action) and event.kind.value == "feedback":
-            t = c.feedback_type
+        t = received_type(self.network.event(name))
         return self.module.Data.wrap(_random_value(t, rng)) if t is not None else None
 
 
