@@ -33,9 +33,6 @@ class Field:
     label: str  # as the user knows it: "Platform", "Distance.front", "set_light"
     kind: str  # "component", "message", "service", "action", "data" or "variable"
     initial: str  # Python literal
-    values: tuple[str, ...] = ()  # the locations or enum values (empty: any value)
-    low: int | None = None  # ranged integers
-    high: int | None = None
     synthesis: bool = True  # takes part in synthesis (variables only)
 
 
@@ -271,7 +268,6 @@ class _Planner:
                     automaton.name,
                     automaton.kind.value,
                     repr(automaton.initial.name),
-                    tuple(loc.name for loc in automaton.locations),
                 )
             )
         for component in self.model.components:
@@ -279,19 +275,9 @@ class _Planner:
                 for v in behaviour.variables:
                     t = v.type
                     initial = self.py(v.initial) if v.initial is not None else constant(_default_value(t))
-                    values = tuple(x.name for x in t.values) if isinstance(t, m.EnumType) else ()
-                    low = t.low if isinstance(t, m.BasicType) else None
-                    high = t.high if isinstance(t, m.BasicType) else None
                     out.append(
                         Field(
-                            self.names.variables[v],
-                            f"{component.name}.{v.name}",
-                            "variable",
-                            initial,
-                            values,
-                            low,
-                            high,
-                            v in self.kept,
+                            self.names.variables[v], f"{component.name}.{v.name}", "variable", initial, v in self.kept
                         )
                     )
         return out
