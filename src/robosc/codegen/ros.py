@@ -180,40 +180,26 @@ def ros_plan(plan: Plan, ros: int, mode: str = "controller") -> RosPlan:
             request = f"{type_name}.Request"
             if ros == 1:  # the request class, which only the controller builds itself
                 request = need(f"{c.package}.srv", f"{c.ros_type}Request") if mode == "controller" else request
-            services.append(
-                Call(
-                    c,
-                    c.ros_name,
-                    _attribute(c.name, taken),
-                    type_name,
-                    request,
-                    events["trigger"],
-                    events["response"],
-                    events["error"],
-                )
-            )
+        elif ros == 1:
+            type_name = need(f"{c.package}.msg", f"{c.ros_type}Action")
+            request = need(f"{c.package}.msg", f"{c.ros_type}Goal") if mode == "controller" else ""
+            dependencies.update({"actionlib", "actionlib_msgs"})
         else:
-            if ros == 1:
-                type_name = need(f"{c.package}.msg", f"{c.ros_type}Action")
-                request = need(f"{c.package}.msg", f"{c.ros_type}Goal") if mode == "controller" else ""
-                dependencies.update({"actionlib", "actionlib_msgs"})
-            else:
-                type_name = need(f"{c.package}.action", c.ros_type)
-                request = f"{type_name}.Goal"
-            actions.append(
-                Call(
-                    c,
-                    c.ros_name,
-                    _attribute(c.name, taken),
-                    type_name,
-                    request,
-                    events["trigger"],
-                    events["response"],
-                    events["error"],
-                    events.get("feedback"),
-                    events.get("cancel"),
-                )
-            )
+            type_name = need(f"{c.package}.action", c.ros_type)
+            request = f"{type_name}.Goal"
+        call = Call(
+            c,
+            c.ros_name,
+            _attribute(c.name, taken),
+            type_name,
+            request,
+            events["trigger"],
+            events["response"],
+            events["error"],
+            events.get("feedback"),
+            events.get("cancel"),
+        )
+        (services if c.kind == "service" else actions).append(call)
 
     def make(kind: str) -> tuple[Topic, ...]:
         out = []
