@@ -14,7 +14,7 @@ from pathlib import Path
 
 from robosc.codegen.templating import environment
 from robosc.language import model as m
-from robosc.language.render import render
+from robosc.language.render import render, steps
 from robosc.plant.network import Automaton, AutomatonKind, Event, event_of
 from robosc.synthesis.result import SynthesisResult
 
@@ -63,10 +63,7 @@ def _detail(transition: m.Transition) -> str:
         return ""
     parts = []
     for a in transition.assignments:
-        target = a.variable.name + "".join(
-            f".{s.property.name}" if isinstance(s, m.FieldStep) else f"[{s.index}]" for s in a.steps
-        )
-        parts.append(f"{target} := {render(a.value)}")
+        parts.append(f"{a.variable.name}{steps(a.steps)} := {render(a.value)}")
     return "do " + ", ".join(parts)
 
 

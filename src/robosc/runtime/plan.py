@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 from robosc.language import model as m
 from robosc.language.source import Span
+from robosc.plant.domains import initial_value
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
 from robosc.runtime.pyexpr import Names, conjunction, constant, identifier, python
 from robosc.synthesis.result import SynthesisResult
@@ -203,19 +204,18 @@ def _automaton_field(a: Automaton) -> str:
     return identifier(prefix, name)
 
 
-def _default_value(t: m.DataType) -> object:
-    if isinstance(t, m.EnumType):
-        return t.values[0].name if t.values else None
-    if isinstance(t, m.BasicType):
-        if t.kind is m.BasicKind.BOOLEAN:
-            return False
-        if t.kind is m.BasicKind.INTEGER:
-            return t.low if t.low is not None and not (t.low <= 0 <= (t.high or 0)) else 0
-        if t.kind is m.BasicKind.DOUBLE:
-            return 0.0
-        if t.kind is m.BasicKind.STRING:
-            return ""
-    return None  # objects and arrays: nothing received yet
+def _default_value(v: m.Variable) -> object:
+    """A variable's start value when it has no initial value: the plant's rule for finite
+    types (false, 0 or the range's low end, the enum's first value), else 0 / 0.0 / "" /
+    None (objects and arrays: nothing received yet)."""
+    try:
+        value = initial_value(v)
+    except ValueError:  # no finite domain
+        t = v.type
+        if isinstance(t, m.BasicType):
+            return {m.BasicKind.INTEGER: 0, m.BasicKind.DOUBLE: 0.0, m.BasicKind.STRING: ""}.get(t.kind)
+        return None
+    return value.name if isinstance(value, m.EnumValue) else value
 
 
 class _Planner:
@@ -273,8 +273,7 @@ class _Planner:
         for component in self.model.components:
             for behaviour in component.behaviours:
                 for v in behaviour.variables:
-                    t = v.type
-                    initial = self.py(v.initial) if v.initial is not None else constant(_default_value(t))
+                    initial = self.py(v.initial) if v.initial is not None else constant(_default_value(v))
                     out.append(
                         Field(
                             self.names.variables[v], f"{component.name}.{v.name}", "variable", initial, v in self.kept
@@ -317,31 +316,21 @@ class _Planner:
         )
 
     # -- events --------------------------------------------------------------------------------
-    def component_part(self, event: Event, automaton: Automaton) -> Part | None:
+    def component_part(self, event: Event, automaton: Automaton) -> Part:
         component = automaton.component
         assert component is not None and component.automaton is not None
         branches = []
         for transition in component.automaton.transitions:
-            if isinstance(transition, m.TauTransition):
-                if event.transition is not transition:
-                    continue
-                branches.append(
-                    Branch(
-                        transition.source.name if transition.source else None,
-                        self.py(transition.guard),
-                        transition.target.name if transition.target else None,
-                    )
-                )
-                continue
             if event_of(self.network, transition) is not event:
                 continue
+            assignments: tuple[Assign, ...] = ()
+            if isinstance(transition, m.TauTransition):
+                guard = self.py(transition.guard)
+            else:
+                guard, assignments = "True", self.assignments(transition)
+            source, target = transition.source, transition.target
             branches.append(
-                Branch(
-                    transition.source.name if transition.source else None,
-                    "True",
-                    transition.target.name if transition.target else None,
-                    self.assignments(transition),
-                )
+                Branch(source.name if source else None, guard, target.name if target else None, assignments)
             )
         return Part(self.automaton_field[automaton], automaton.name, tuple(branches))
 
@@ -377,7 +366,6 @@ class _Planner:
                 continue
             if automaton.kind is AutomatonKind.COMPONENT:
                 part = self.component_part(event, automaton)
-                assert part is not None
                 total = not event.controllable or event.kind is K.CANCEL  # responsiveness
                 if not total:
                     gates.append(self.gate(part))
