@@ -9,7 +9,7 @@ import time
 import rospy
 from geometry_msgs.msg import Twist  # noqa: F401 (used by the scripts)
 from sensor_msgs.msg import LaserScan
-from std_msgs.msg import Bool, Empty, Float64, Int64, String  # noqa: F401
+from std_msgs.msg import Bool, Empty, Float32, Int16, String  # noqa: F401
 
 
 def start(name="robosc_test"):

@@ -145,9 +145,9 @@ class Ros1:
             raise RuntimeError("rosmaster did not start\n" + processes.output())
 
     def node(self, package: Path, **params: object) -> subprocess.Popen[bytes]:
-        script = next((package / "scripts").glob("*_node.py"))
+        script = next((package / "scripts").glob("*_node"))
         args = [f"_{k}:={_ros1_param(v)}" for k, v in params.items()]
-        return self.processes.start(script.stem, [ROS1_PYTHON, str(script), *args], self.env)
+        return self.processes.start(script.name, [ROS1_PYTHON, str(script), *args], self.env)
 
     def client(self, body: str, timeout: float = 60) -> Any:
         """Run a client script (rospy, the helpers of ros1_client.py in scope); it prints its

@@ -29,16 +29,32 @@ def depends(package: Path) -> set[str]:
     return {e.text or "" for e in root if e.tag.endswith("depend")}
 
 
+RUNTIME = {
+    "__init__.py",
+    "live_server.py",
+    "messages.py",
+    "node.py",
+    "recording.py",
+    "ros1.py",
+    "ros2.py",
+    "supervisor.py",
+    "values.py",
+}
+
+
 def test_ros1_catkin_package(tmp_path: Path) -> None:
     package = build_package("examples/pick_and_light.rscd", 1, "controller", tmp_path)
     files = {p.relative_to(package).as_posix() for p in package.rglob("*") if p.is_file()}
+    python = "src/pick_and_light_robosc"
     assert files == {
         "package.xml",
         "CMakeLists.txt",
-        "scripts/pick_and_light_robosc_node.py",
-        "scripts/pick_and_light_supervisor.py",
-        "scripts/robosc_live.py",
+        "setup.py",
+        "scripts/pick_and_light_robosc_node",
         "launch/pick_and_light_robosc.launch",
+        f"{python}/__init__.py",
+        f"{python}/pick_and_light_supervisor.py",
+        *(f"{python}/onboard/{name}" for name in RUNTIME),
     }
     assert {
         "catkin",
@@ -51,14 +67,26 @@ def test_ros1_catkin_package(tmp_path: Path) -> None:
         "actionlib_msgs",
     } <= depends(package)
     cmake = (package / "CMakeLists.txt").read_text()
-    assert "project(pick_and_light_robosc)" in cmake
-    assert "catkin_install_python(" in cmake and "scripts/pick_and_light_robosc_node.py" in cmake
-    node = (package / "scripts/pick_and_light_robosc_node.py").read_text()
+    assert "project(pick_and_light_robosc)" in cmake and "catkin_python_setup()" in cmake
+    assert "catkin_install_python(PROGRAMS scripts/pick_and_light_robosc_node" in cmake
+    node = (package / "scripts/pick_and_light_robosc_node").read_text()
     assert node.startswith("#!/usr/bin/env python3")
-    assert (package / "scripts/pick_and_light_robosc_node.py").stat().st_mode & 0o111
-    ast.parse(node, feature_version=(3, 8))
-    assert "from test_msgs.msg import FibonacciAction" in node
-    assert "from std_srvs.srv import SetBool" in node
+    assert (package / "scripts/pick_and_light_robosc_node").stat().st_mode & 0o111
+    for path in [package / "scripts/pick_and_light_robosc_node", *package.rglob("*.py")]:
+        ast.parse(path.read_text(), feature_version=(3, 8))
+    # ROS types are found by module at run time, never imported by a bare class name
+    module = (package / python / "pick_and_light_supervisor.py").read_text()
+    assert "Comm('pick', 'action', '/arm/pick', 'test_msgs/Fibonacci', 'none')" in module
+    assert "Comm('set_light', 'service', '/light/set', 'std_srvs/SetBool', 'none')" in module
+
+
+def test_the_runtime_is_copied_verbatim(tmp_path: Path) -> None:
+    from robosc.runtime.module import runtime_files
+
+    package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    copied = {p.name: p.read_text() for p in (package / "maze_solver_robosc/onboard").iterdir()}
+    assert copied == runtime_files()
+    assert set(copied) == RUNTIME
 
 
 def test_ros2_ament_python_package(tmp_path: Path) -> None:
@@ -72,17 +100,33 @@ def test_ros2_ament_python_package(tmp_path: Path) -> None:
         "pick_and_light_robosc/__init__.py",
         "pick_and_light_robosc/node.py",
         "pick_and_light_robosc/pick_and_light_supervisor.py",
-        "pick_and_light_robosc/robosc_live.py",
         "launch/pick_and_light_robosc.launch.py",
+        *(f"pick_and_light_robosc/onboard/{name}" for name in RUNTIME),
     }
     assert {"rclpy", "std_msgs", "geometry_msgs", "std_srvs", "test_msgs", "action_msgs"} <= depends(package)
     root = ET.parse(package / "package.xml").getroot()
     assert root.find("export/build_type").text == "ament_python"  # type: ignore[union-attr]
     setup = (package / "setup.py").read_text()
     assert "'pick_and_light_robosc_node = pick_and_light_robosc.node:main'" in setup
+    assert "package_name + \".onboard\"" in setup
     assert "script_dir=$base/lib/pick_and_light_robosc" in (package / "setup.cfg").read_text()
     for path in package.rglob("*.py"):
         ast.parse(path.read_text(), feature_version=(3, 8))
+
+
+def test_relative_names_option(tmp_path: Path) -> None:
+    from robosc.api import load_model, plan_supervisor, synthesize_model
+    from robosc.codegen.ros import generate
+
+    plan = plan_supervisor(synthesize_model(load_model(ROOT / "examples/maze_solver.rscd")))
+    generate(plan, 2, "supervisor", tmp_path / "rel", relative=True)
+    module = (tmp_path / "rel/maze_solver_robosc/maze_solver_supervisor.py").read_text()
+    assert "Comm('movement', 'incoming', 'cmd_vel', 'geometry_msgs/Twist', 'object')" in module
+    launch = (tmp_path / "rel/launch/maze_solver_robosc.launch.py").read_text()
+    assert "('cmd_vel', 'robosc/controller/cmd_vel')" in launch
+    generate(plan, 2, "supervisor", tmp_path / "abs")
+    module = (tmp_path / "abs/maze_solver_robosc/maze_solver_supervisor.py").read_text()
+    assert "Comm('movement', 'incoming', '/cmd_vel', 'geometry_msgs/Twist', 'object')" in module
 
 
 LOAD_LAUNCH = """
@@ -115,8 +159,9 @@ def test_ros1_launch_file_loads_in_roslaunch(tmp_path: Path, mode: str) -> None:
     loaded = json.loads(done.stdout.strip().splitlines()[-1])
     assert loaded["params"]["/maze_solver_robosc/rate"] == 25.0
     assert loaded["params"]["/maze_solver_robosc/tick_on_message"] is False
+    assert loaded["params"]["/maze_solver_robosc/server_timeout"] == 5.0
     nodes = {n[2]: n for n in loaded["nodes"]}
-    assert nodes["maze_solver_robosc"][:2] == ["maze_solver_robosc", "maze_solver_robosc_node.py"]
+    assert nodes["maze_solver_robosc"][:2] == ["maze_solver_robosc", "maze_solver_robosc_node"]
     if mode == "supervisor":
         controller = nodes["controller"]
         assert controller[:2] == ["my_robot", "wall_follower.py"]
@@ -143,10 +188,11 @@ def test_generate_and_build_commands(tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     for relative in (
         "ros1/package.xml",
-        "ros1/scripts/live_view.html",
+        "ros1/src/maze_solver_robosc/live_view.html",
         "ros2/setup.py",
         "ros2/maze_solver_robosc/live_view.html",
         "maze_solver_supervisor.py",
+        "onboard/supervisor.py",
         "MazeSolver.cif",
     ):
         assert (tmp_path / "out" / relative).exists(), relative
@@ -162,7 +208,7 @@ def test_generate_refuses_what_ros_cannot_run(tmp_path: Path) -> None:
     result = run("generate", str(model), "--ros", "1", "-o", str(tmp_path / "x"))
     assert result.returncode == 1
     assert (
-        f"{model}:4:5: error: 'b' uses topic /x with type Bool, but another communication uses it with Float64"
+        f"{model}:4:5: error: 'b' uses topic /x with type std_msgs/Bool, but another communication uses it with std_msgs/Float32"
         in result.stderr
     )
     model = tmp_path / "untyped.rscd"

@@ -20,7 +20,7 @@ def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros
         """
 start()
 moves = Recorder("/cmd_vel", Twist)
-lefts = Recorder("/rotate_left", Int64)
+lefts = Recorder("/rotate_left", Int16)
 state = State()
 scan_pub = publisher("/scan", LaserScan)
 done_pub = publisher("/rotate_done", Empty)
@@ -68,7 +68,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros1: Ros1, tmp_path:
 start()
 cmd = Recorder("/cmd_vel", Twist)
 state = State()
-correction = publisher("/line/correction", Float64)
+correction = publisher("/line/correction", Float32)
 scan_pub = publisher("/scan", LaserScan)
 stop = publisher("/emergency_stop/stop", Empty)
 resume = publisher("/emergency_stop/continue", Empty)
@@ -81,7 +81,7 @@ def speeds(seconds):
 
 report = {}
 report["start"] = speeds(0.5)  # unsafe until the first scan, no line yet
-correction.publish(Float64(data=10.0))
+correction.publish(Float32(data=10.0))
 scan_pub.publish(scan([5.0] * 360))
 assert wait_for(lambda: state.value("Lidar.safety") == "safe" and state.value("LineDetector") == "line_found")
 report["driving"] = speeds(0.5)
@@ -214,19 +214,19 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros1: 
         """
 start()
 robot_moves = Recorder("/cmd_vel", Twist)
-robot_lefts = Recorder("/rotate_left", Int64)
+robot_lefts = Recorder("/rotate_left", Int16)
 blocked = Recorder("/blocked", String)
 seen_by_controller = Recorder("/robosc/controller/scan", LaserScan)
 state = State()
 controller_move = publisher("/robosc/controller/cmd_vel", Twist)
-controller_left = publisher("/robosc/controller/rotate_left", Int64)
+controller_left = publisher("/robosc/controller/rotate_left", Int16)
 scan_pub = publisher("/scan", LaserScan)
 forward = Twist()
 forward.linear.x = 0.3
 report = {}
 controller_move.publish(forward)  # the way is free: allowed
 assert wait_for(lambda: robot_moves.messages(), 5), "an allowed command was not forwarded"
-controller_left.publish(Int64(data=90))  # no wall in front: turning left is not allowed
+controller_left.publish(Int16(data=90))  # no wall in front: turning left is not allowed
 assert wait_for(lambda: blocked.messages(), 5), "a forbidden command was not reported"
 report["blocked_left"] = json.loads(blocked.messages()[-1].data)["event"]
 scan_pub.publish(scan([0.3] + [5.0] * 359))  # a wall ahead
@@ -236,7 +236,7 @@ moves_before = len(robot_moves.messages())
 controller_move.publish(forward)  # into the wall: blocked
 assert wait_for(lambda: len(blocked.messages()) >= 2, 5)
 report["blocked_move"] = json.loads(blocked.messages()[-1].data)["event"]
-controller_left.publish(Int64(data=90))  # now turning left is allowed
+controller_left.publish(Int16(data=90))  # now turning left is allowed
 assert wait_for(lambda: robot_lefts.messages(), 5)
 rospy.sleep(0.3)
 report["moves_into_wall"] = len(robot_moves.messages()) - moves_before

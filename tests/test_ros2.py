@@ -40,12 +40,12 @@ def _scan(ranges: list[float]) -> Any:
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros2, tmp_path: Path) -> None:
     from geometry_msgs.msg import Twist
-    from std_msgs.msg import Empty, Int64, String
+    from std_msgs.msg import Empty, Int16, String
 
     package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
     node = ros2.start(package, rate=20.0, seed=1, publish_state=True)
     moves = ros2.record(Twist, "/cmd_vel")
-    lefts = ros2.record(Int64, "/rotate_left")
+    lefts = ros2.record(Int16, "/rotate_left")
     states = ros2.record(String, "/state")
     scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
     done = ros2.node.create_publisher(Empty, "/rotate_done", 10)
@@ -74,14 +74,14 @@ def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros
 
 def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path: Path) -> None:
     from geometry_msgs.msg import Twist
-    from std_msgs.msg import Empty, Float64, String
+    from std_msgs.msg import Empty, Float32, String
 
     package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
     event_log = tmp_path / "events.jsonl"
     node = ros2.start(package, rate=20.0, seed=2, publish_state=True, event_log=str(event_log))
     cmd = ros2.record(Twist, "/cmd_vel")
     states = ros2.record(String, "/state")
-    correction = ros2.node.create_publisher(Float64, "/line/correction", 10)
+    correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
     scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
     stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
     resume = ros2.node.create_publisher(Empty, "/emergency_stop/continue", 10)
@@ -96,7 +96,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
 
     start = speeds(0.5)
     assert start and set(start) == {0.0}
-    correction.publish(Float64(data=10.0))
+    correction.publish(Float32(data=10.0))
     scan.publish(_scan([5.0] * 360))
     assert ros2.spin_until(
         lambda: _state(states).get("Lidar.safety") == "safe" and _state(states).get("LineDetector") == "line_found", 10
@@ -280,17 +280,17 @@ def test_a_service_that_never_answers_does_not_stop_the_node(ros2: Ros2, tmp_pat
 
 def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: Ros2, tmp_path: Path) -> None:
     from geometry_msgs.msg import Twist
-    from std_msgs.msg import Int64, String
+    from std_msgs.msg import Int16, String
 
     package = build_package("examples/maze_solver.rscd", 2, "supervisor", tmp_path)
     node = ros2.start(package, rate=20.0, publish_state=True)
     robot_moves = ros2.record(Twist, "/cmd_vel")
-    robot_lefts = ros2.record(Int64, "/rotate_left")
+    robot_lefts = ros2.record(Int16, "/rotate_left")
     blocked = ros2.record(String, "/blocked")
     states = ros2.record(String, "/state")
     to_controller = ros2.record(_scan([]).__class__, "/robosc/controller/scan")
     move = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
-    left = ros2.node.create_publisher(Int64, "/robosc/controller/rotate_left", 10)
+    left = ros2.node.create_publisher(Int16, "/robosc/controller/rotate_left", 10)
     scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
     for publisher in (move, left, scan):
         _wait_subscribed(ros2, publisher)
@@ -298,7 +298,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     forward.linear.x = 0.3
     move.publish(forward)
     assert ros2.spin_until(lambda: bool(robot_moves), 5), "an allowed command was not forwarded"
-    left.publish(Int64(data=90))
+    left.publish(Int16(data=90))
     assert ros2.spin_until(lambda: bool(blocked), 5), "a forbidden command was not reported"
     assert json.loads(blocked[-1].data)["event"] == "turn_left"
     assert not robot_lefts
@@ -309,7 +309,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     move.publish(forward)
     assert ros2.spin_until(lambda: len(blocked) >= 2, 5)
     assert json.loads(blocked[-1].data)["event"] == "movement"
-    left.publish(Int64(data=90))
+    left.publish(Int16(data=90))
     assert ros2.spin_until(lambda: bool(robot_lefts), 5)
     ros2.spin(0.3)
     assert len(robot_moves) == before
@@ -415,6 +415,7 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
         seen: list[str] = []
         end = time.monotonic() + 10
         while time.monotonic() < end and not any('"event": "turn_left"' in line for line in seen):
+            scan.publish(_scan([0.3] + [5.0] * 359))  # a LiDAR publishes all the time (best effort)
             ros2.spin(0.01)
             seen.append(stream.readline().decode())
     turn = next(line for line in seen if '"event": "turn_left"' in line)

@@ -94,7 +94,9 @@ def test_checks_catch_a_wrong_controller() -> None:
     """The checks are independent of the generated code: a tampered guard is caught."""
     sim = sim_of("maze_solver")
     sim.run("tick")
-    sim.supervisor.can_turn_left = lambda: True  # a broken controller: turns without a wall
+    broken = sim.supervisor
+    allowed = broken._allowed
+    broken._allowed = lambda: (*allowed(), broken.e1_turn_left)  # a broken controller: turns without a wall
     with pytest.raises(Violation) as caught:
         sim.perform("turn_left")
     assert "breaks 'requirement turn_left needs Platform.ready and Distance.front = wall_front'" in str(caught.value)
@@ -128,7 +130,8 @@ robot Stuck {
     assert result.ok  # act is disabled: from b, go leads to c, where back is never allowed
     sim = simulator(result)
     assert sim.allowed() == []
-    sim.supervisor.c_C = "b"  # force the plant where the supervisor would never let it go
+    field = next(f.name for f in sim.plan.fields if f.label == "C")
+    setattr(sim.supervisor, field, "b")  # force the plant where the supervisor would never let it go
     sim._before = sim.network_state()
     with pytest.raises(Violation, match="outside the controlled behaviour"):
         sim.deliver("go")

@@ -29,14 +29,29 @@ def live_page(result: object) -> str | None:
         return None
 
 
+RELATIVE = click.option(
+    "--relative-names",
+    is_flag=True,
+    help="Make the model's absolute ROS names relative (/scan -> scan), so that a namespace "
+    "(__ns on ROS 2, the launch file's namespace argument) moves the whole robot.",
+)
+
+
 def _write_package(
-    plan: object, ros: int, mode: str, output: Path, file: str, include: tuple[str, ...], page: str | None = None
+    plan: object,
+    ros: int,
+    mode: str,
+    output: Path,
+    file: str,
+    include: tuple[str, ...],
+    page: str | None = None,
+    relative: bool = False,
 ) -> list[Path]:
     from robosc.codegen.ros import RosError
     from robosc.codegen.ros import generate as generate_package
 
     try:
-        return generate_package(plan, ros, mode, output, page)  # type: ignore[arg-type]
+        return generate_package(plan, ros, mode, output, page, relative)  # type: ignore[arg-type]
     except RosError as exc:
         from robosc.api import check_file
         from robosc.language.diagnostics import error, render_text
@@ -60,11 +75,12 @@ def _write_package(
 @click.option(
     "-o", "--output", type=click.Path(file_okay=False), required=True, help="Directory to write the package to."
 )
+@RELATIVE
 @include_option
-def generate(file: str, ros: str, mode: str, output: str, include: tuple[str, ...]) -> None:
+def generate(file: str, ros: str, mode: str, output: str, relative_names: bool, include: tuple[str, ...]) -> None:
     """Generate a ROS package running the synthesized supervisor."""
     result, plan = supervised(file, include, "code generation")
-    written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result))
+    written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result), relative_names)
     click.echo(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
     raise exit_with(EXIT_OK)
 
@@ -73,14 +89,15 @@ def generate(file: str, ros: str, mode: str, output: str, include: tuple[str, ..
 @click.argument("file", type=click.Path())
 @click.option("-o", "--output", type=click.Path(file_okay=False), required=True, help="Directory for everything built.")
 @MODE
+@RELATIVE
 @include_option
-def build(file: str, output: str, mode: str, include: tuple[str, ...]) -> None:
+def build(file: str, output: str, mode: str, relative_names: bool, include: tuple[str, ...]) -> None:
     """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
-    stand-alone supervisor module and the CIF file."""
+    stand-alone supervisor module (with the runtime it needs) and the CIF file."""
     from rich.console import Console
 
     from robosc.codegen.cif import to_cif
-    from robosc.runtime.module import module_name, render_module
+    from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
 
     result, plan = supervised(file, include, "a build")
     out = Path(output)
@@ -92,12 +109,15 @@ def build(file: str, output: str, mode: str, include: tuple[str, ...]) -> None:
     page = live_page(result)
     for ros in (1, 2):
         target = out / f"ros{ros}"
-        written = _write_package(plan, ros, mode, target, file, include, page)
+        written = _write_package(plan, ros, mode, target, file, include, page, relative_names)
         console.print(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
     try:
         module = out / f"{module_name(plan)}.py"
-        module.write_text(render_module(plan), encoding="utf-8")
-        console.print(f"  stand-alone supervisor: {module}")
+        module.write_text(render_module(plan, relative_names), encoding="utf-8")
+        (out / RUNTIME_PACKAGE).mkdir(exist_ok=True)
+        for name, text in runtime_files().items():
+            (out / RUNTIME_PACKAGE / name).write_text(text, encoding="utf-8")
+        console.print(f"  stand-alone supervisor: {module} (runtime: {out / RUNTIME_PACKAGE})")
         cif_path = out / f"{plan.robot}.cif"
         cif_path.write_text(to_cif(result.network, Path(file).name), encoding="utf-8")
         console.print(f"  CIF: {cif_path}")

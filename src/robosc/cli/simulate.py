@@ -100,7 +100,7 @@ def simulate(
     live = None
     if view:
         from robosc.debug.live import render_page
-        from robosc.debug.live_server import LiveView
+        from robosc.runtime.onboard.live_server import LiveView
 
         try:
             live = LiveView(render_page(result), port=port)

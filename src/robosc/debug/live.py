@@ -1,7 +1,7 @@
 """The live view page: each component's automaton (laid out once, by Graphviz), its
 variables, the busy communications, and the latest events. The page switches CSS
 classes only: the current location is highlighted, each transition flashes as it
-is taken. Events arrive from :mod:`robosc.debug.live_server` as Server-Sent Events."""
+is taken. Events arrive from :mod:`robosc.runtime.onboard.live_server` as Server-Sent Events."""
 
 from __future__ import annotations
 

@@ -1,30 +1,46 @@
-"""Render the stand-alone supervisor module (Python 3.8+, standard library only) from a plan."""
+"""The generated per-robot module (Python 3.8+, standard library only) and the runtime it
+runs on: :func:`render_module` writes the module from a plan, :func:`runtime_files` gives
+the verbatim copy of :mod:`robosc.runtime.onboard` that goes next to it."""
 
 from __future__ import annotations
 
+import re
+from importlib.resources import files
 from pathlib import Path
 
 from robosc.codegen.templating import environment
+from robosc.runtime.onboard import VERSION
 from robosc.runtime.plan import Plan
+
+RUNTIME_PACKAGE = "onboard"  # the runtime's directory next to a generated module
 
 
 def module_name(plan: Plan) -> str:
     """The generated module's name: ``maze_solver_supervisor`` for robot ``MazeSolver``."""
-    import re
-
     snake = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", plan.robot).lower()
     return f"{snake}_supervisor"
 
 
-def render_module(plan: Plan) -> str:
-    from importlib.metadata import version
-
+def render_module(plan: Plan, relative_names: bool = False) -> str:
+    """The module's text; with ``relative_names``, the model's absolute ROS names are made
+    relative (``/scan`` -> ``scan``), so that a namespace moves the whole robot."""
     template = environment("robosc.runtime").get_template("supervisor.py.j2")
-    return template.render(plan=plan, version=version("robosc"), source_name=source_name(plan))
+    names = {c.name: c.ros_name for c in plan.communications}
+    if relative_names:
+        names = {k: v.lstrip("/") if v.startswith("/") else v for k, v in names.items()}
+    return template.render(plan=plan, version=VERSION, source_name=source_name(plan), ros_names=names)
+
+
+def runtime_files() -> dict[str, str]:
+    """The runtime's modules, by file name (``supervisor.py``, ``ros2.py``, ...), as they are."""
+    folder = files("robosc.runtime").joinpath(RUNTIME_PACKAGE)
+    return {
+        entry.name: entry.read_text(encoding="utf-8")
+        for entry in sorted(folder.iterdir(), key=lambda e: e.name)
+        if entry.name.endswith(".py")
+    }
 
 
 def source_name(plan: Plan) -> str:
     """The model's file name, reduced to characters that are safe in any generated file."""
-    import re
-
-    return re.sub(r"[^\w.\- ]", "_", Path(plan.source).name)
+    return re.sub(r"[^\w.\- ]", "_", Path(plan.source).name).replace("--", "-_")

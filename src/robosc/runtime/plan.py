@@ -1,15 +1,17 @@
 """The run-time plan: a synthesized supervisor laid out for code generation.
 
 :func:`plan` turns a :class:`~robosc.synthesis.result.SynthesisResult` into plain
-data (field names, Python condition text, what each event does) that the
-templates render into the stand-alone supervisor module and the ROS nodes.
+data -- field names, Python condition text, the lines of each event's effect --
+that ``templates/supervisor.py.j2`` places into the generated per-robot module.
 Nothing here is evaluated; every condition is Python source made by
-:mod:`robosc.runtime.pyexpr`.
+:mod:`robosc.runtime.pyexpr`. What every robot shares (the cycle, conversion,
+recording, ROS) is not generated: it is :mod:`robosc.runtime.onboard`.
 
-The state of the generated supervisor is one field per automaton (its location
-name) and one per variable. Component automata are ``c_<Component>``,
-communication plants ``p_<communication>``, data plants ``d_<communication>``,
-variables ``v_<Component>_<variable>``.
+Generated identifiers come from one :class:`~robosc.runtime.pyexpr.Identifiers`
+scheme: automata ``a<N>_<name>``, variables ``v<N>_<Component>_<name>``,
+controllable events ``e<N>_<event>``, uncontrollable ones ``u<N>_<event>``,
+provided data ``data<N>_<communication>`` / ``DATA<N>_<communication>``, enum
+rules ``enum<N>_<Enum>``.
 """
 
 from __future__ import annotations
@@ -20,10 +22,19 @@ from robosc.language import model as m
 from robosc.language.source import Span
 from robosc.plant.domains import initial_value
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
-from robosc.runtime.pyexpr import Names, conjunction, constant, identifier, python
+from robosc.runtime.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
 from robosc.synthesis.result import SynthesisResult
 
 K = EventKind
+INDENT = "    "
+# which part of the snapshot an automaton's location goes to
+GROUPS = {
+    AutomatonKind.COMPONENT: "automata",
+    AutomatonKind.MESSAGE: "communications",
+    AutomatonKind.SERVICE: "communications",
+    AutomatonKind.ACTION: "communications",
+    AutomatonKind.DATA: "data",
+}
 
 
 @dataclass(frozen=True)
@@ -32,56 +43,14 @@ class Field:
 
     name: str  # the Python attribute
     label: str  # as the user knows it: "Platform", "Distance.front", "set_light"
-    kind: str  # "component", "message", "service", "action", "data" or "variable"
+    group: str  # "automata", "communications", "data" or "variables"
     initial: str  # Python literal
     synthesis: bool = True  # takes part in synthesis (variables only)
 
 
 @dataclass(frozen=True)
-class Assign:
-    field: str  # the variable's field
-    steps: str  # Python text of property / index steps into it ("" for the whole variable)
-    value: str  # Python expression
-    label: str  # "Arm.picks"
-    type_check: str  # a condition on ``{}`` that the new value must meet to be stored ("" for any)
-
-    def check(self, name: str) -> str:
-        """The type check for a new value held in the Python variable ``name``."""
-        return self.type_check.replace("{}", name) if self.type_check else "True"
-
-
-@dataclass(frozen=True)
-class Branch:
-    """One way an automaton takes part in an event."""
-
-    source: str | None  # location name; None: from every location
-    guard: str  # Python condition
-    target: str | None  # location name; None: stays
-    assignments: tuple[Assign, ...] = ()
-
-    @property
-    def test(self) -> str:
-        """Python condition choosing this branch (the automaton's location is in ``here``)."""
-        return conjunction(["True" if self.source is None else f"here == {self.source!r}", self.guard])
-
-    @property
-    def changes(self) -> bool:
-        return (self.target is not None and self.target != self.source) or bool(self.assignments)
-
-
-@dataclass(frozen=True)
-class Part:
-    """What one automaton does on one event."""
-
-    field: str
-    label: str
-    branches: tuple[Branch, ...]
-
-
-@dataclass(frozen=True)
 class Communication:
     name: str
-    method: str  # identifier used in method names
     kind: str  # "outgoing", "incoming", "service", "action"
     ros_name: str
     component: str
@@ -89,6 +58,12 @@ class Communication:
     ros_type: str | None  # the linked interface's type name
     data_kind: str  # messages: "string", "boolean", "integer", "double", "none" or "object"
     span: Span
+    interface_span: Span | None = None
+
+    @property
+    def interface(self) -> str | None:
+        """``package/Type`` of the linked interface."""
+        return f"{self.package}/{self.ros_type}" if self.package and self.ros_type else None
 
 
 @dataclass(frozen=True)
@@ -97,28 +72,20 @@ class EventPlan:
     method: str
     controllable: bool
     kind: str  # EventKind value
-    parts: tuple[Part, ...]
     enabled: str  # Python condition: the plant allows it (and, when controllable, the supervisor)
     plant: str  # the plant part of ``enabled``
     supervisor: str  # the supervisor part (required and added)
+    effect: tuple[str, ...]  # Python lines (indented relative to the method body)
     communication: Communication | None = None
-    convert: str | None = None  # enum conversion of the received data
-    data: str | None = None  # method building the data to send (triggers with provide statements)
-    signature: str | None = None  # Python literal: the constant part of the provided data, if any
+    convert: str | None = None  # Python: (rules function, enum name, default) for enum data
+    data: str | None = None  # Python expression for the data to send when none is given
+    computed: bool = False  # ``data`` is computed from the state (it may be refused)
+    signature: str | None = None  # Python literal: alternatives of the constant part of the data
 
     @property
-    def hook(self) -> str | None:
-        """The method the generated supervisor calls to put this event on the middleware."""
-        c = self.communication
-        if c is None or not self.controllable:
-            return None
-        if self.kind == "message":
-            return f"send_{c.method}"
-        if self.kind == "trigger":
-            return f"{'call' if c.kind == 'service' else 'start'}_{c.method}"
-        if self.kind == "cancel":
-            return f"cancel_{c.method}"
-        return None
+    def sends(self) -> bool:
+        """Performing it puts something on the middleware (a message, a call, a cancel)."""
+        return self.controllable and self.communication is not None and self.kind in ("message", "trigger", "cancel")
 
     @property
     def is_request(self) -> bool:
@@ -127,7 +94,7 @@ class EventPlan:
 
     @property
     def changes(self) -> bool:
-        return any(b.changes for p in self.parts for b in p.branches)
+        return bool(self.effect)
 
 
 @dataclass(frozen=True)
@@ -136,6 +103,7 @@ class Conversion:
 
     function: str
     enum: str
+    source: str  # the type converted from, for the reader
     rules: tuple[tuple[str, str], ...]  # (Python condition on ``value``, value name)
     default: str
 
@@ -146,14 +114,15 @@ class DataChoice:
     event: str  # the provide event's name
     enabled: str  # Python condition (plant guard, required and added)
     data: str  # Python expression of the data
-    constant: bool  # reads no state: computed once, at import
+    constant: bool  # reads no state
 
 
 @dataclass(frozen=True)
 class DataPlant:
     field: str
     communication: str
-    method: str  # the method that returns the data of the current location
+    method: str  # the method returning the data of the current location (computed data)
+    table: str  # the module-level table of the data per location (constant data)
     choices: tuple[DataChoice, ...]
     none_event: str | None
     none_enabled: str | None  # when there is a "provide none" event
@@ -163,9 +132,17 @@ class DataPlant:
         return all(c.constant for c in self.choices)
 
     @property
-    def table(self) -> str:
-        """The module-level table of constant data, per location."""
-        return identifier("DATA", self.communication)
+    def choose(self) -> str:
+        """Python: the location this data plant moves to now (None: it stays)."""
+        options = [(c.location, c.enabled) for c in self.choices]
+        if self.none_enabled is not None:
+            options.append(("none", self.none_enabled))
+        text = ""
+        for location, enabled in options:
+            if enabled == "True":
+                return text + repr(location)
+            text += f"{location!r} if {_wrapped(enabled)} else "
+        return text + "None"
 
 
 @dataclass(frozen=True)
@@ -194,23 +171,33 @@ class Plan:
     def communication(self, name: str) -> Communication:
         return next(c for c in self.communications if c.name == name)
 
-    def data_plant(self, method: str) -> DataPlant:
-        return next(d for d in self.data_plants if d.method == method)
+
+def _wrapped(condition: str) -> str:
+    return f"({condition})" if " or " in condition or " if " in condition else condition
 
 
-def _automaton_field(a: Automaton) -> str:
-    prefix = {AutomatonKind.COMPONENT: "c", AutomatonKind.DATA: "d"}.get(a.kind, "p")
-    name = a.name[: -len("_data")] if a.kind is AutomatonKind.DATA else a.name
-    return identifier(prefix, name)
+def _literal(e: m.Expr | None) -> object:
+    """The value of a literal (or a negated one), else None."""
+    if isinstance(e, m.Literal):
+        return e.value
+    if isinstance(e, m.EnumLiteral):
+        return e.value.name
+    if isinstance(e, m.Unary) and e.op == "-" and isinstance(e.operand, m.Literal):
+        value = e.operand.value
+        return -value if isinstance(value, int | float) and not isinstance(value, bool) else None
+    return None
 
 
-def _default_value(v: m.Variable) -> object:
-    """A variable's start value when it has no initial value: the plant's rule for finite
-    types (false, 0 or the range's low end, the enum's first value), else 0 / 0.0 / "" /
-    None (objects and arrays: nothing received yet)."""
+def _start(v: m.Variable) -> object:
+    """A variable's start value: its initial value, else the plant's rule for finite types
+    (false, 0 or the range's value closest to 0, the enum's first value), else 0 / 0.0 / ""
+    / None (objects and arrays: nothing received yet)."""
     try:
         value = initial_value(v)
     except ValueError:  # no finite domain
+        given = _literal(v.initial)
+        if given is not None:
+            return given
         t = v.type
         if isinstance(t, m.BasicType):
             return {m.BasicKind.INTEGER: 0, m.BasicKind.DOUBLE: 0.0, m.BasicKind.STRING: ""}.get(t.kind)
@@ -218,15 +205,50 @@ def _default_value(v: m.Variable) -> object:
     return value.name if isinstance(value, m.EnumValue) else value
 
 
+def _type_check(v: m.Variable, steps: tuple[m.Step, ...]) -> str:
+    """What the runtime checks a new value against (Python literal; None: anything)."""
+    t = v.type
+    if steps:
+        return "None"
+    if isinstance(t, m.EnumType):
+        return repr(tuple(x.name for x in t.values))
+    if isinstance(t, m.BasicType) and t.is_ranged_integer:
+        return repr(("integer", t.low, t.high))
+    if isinstance(t, m.BasicType) and t.kind is not m.BasicKind.NONE:
+        return repr(t.kind.value)
+    return "None"
+
+
+def _signature(data: m.Expr | m.ObjectValue) -> str | None:
+    """The fields of provided data that are constants, as a Python literal (nested dicts):
+    what tells the messages of events sharing a topic apart. None: no constant part."""
+    if isinstance(data, m.ObjectValue):
+        items = []
+        for f in data.fields:
+            inner = _signature(f.value)
+            if inner is not None:
+                items.append(f"{f.property.name!r}: {inner}")
+        return "{" + ", ".join(items) + "}" if items else None
+    value = _literal(data)
+    return constant(value) if value is not None else None
+
+
+def _expressions(data: m.Expr | m.ObjectValue) -> list[m.Expr]:
+    if isinstance(data, m.ObjectValue):
+        return [e for f in data.fields for e in _expressions(f.value)]
+    return list(m.walk(data))
+
+
 class _Planner:
     def __init__(self, result: SynthesisResult) -> None:
         self.result = result
         self.network = network = result.network
         self.model = network.model
+        self.ids = ids = Identifiers()
         locations: dict[m.State, tuple[str, str]] = {}
         self.automaton_field: dict[Automaton, str] = {}
         for automaton in network.automata:
-            f = _automaton_field(automaton)
+            f = ids.new("a", automaton.name)
             self.automaton_field[automaton] = f
             for location in automaton.locations:
                 locations[location] = (f, location.name)
@@ -234,7 +256,7 @@ class _Planner:
         for component in self.model.components:
             for behaviour in component.behaviours:
                 for v in behaviour.variables:
-                    variables[v] = identifier("v", component.name, v.name)
+                    variables[v] = ids.new("v", component.name, v.name)
         self.names = Names(locations, variables)
         self.kept = set(network.variables)
         self.conversions: dict[m.EnumType, Conversion] = {}
@@ -253,105 +275,100 @@ class _Planner:
         if enum not in self.conversions:
             rules = tuple((self.py(r.condition), r.value.name) for r in enum.rules if r.condition is not None)
             default = enum.default or (enum.values[0] if enum.values else None)
+            source = enum.source.name if isinstance(enum.source, m.ObjectType | m.EnumType) else str(enum.source)
             self.conversions[enum] = Conversion(
-                identifier("enum", enum.name), enum.name, rules, default.name if default else ""
+                self.ids.new("enum", enum.name), enum.name, source, rules, default.name if default else ""
             )
         return self.conversions[enum]
 
     # -- state -------------------------------------------------------------------------------
     def fields(self) -> list[Field]:
-        out = []
-        for automaton in self.network.automata:
-            out.append(
-                Field(
-                    self.automaton_field[automaton],
-                    automaton.name,
-                    automaton.kind.value,
-                    repr(automaton.initial.name),
-                )
-            )
+        out = [
+            Field(self.automaton_field[a], a.name, GROUPS[a.kind], repr(a.initial.name)) for a in self.network.automata
+        ]
         for component in self.model.components:
             for behaviour in component.behaviours:
                 for v in behaviour.variables:
-                    initial = self.py(v.initial) if v.initial is not None else constant(_default_value(v))
-                    out.append(
-                        Field(
-                            self.names.variables[v], f"{component.name}.{v.name}", "variable", initial, v in self.kept
-                        )
-                    )
+                    label = f"{component.name}.{v.name}"
+                    out.append(Field(self.names.variables[v], label, "variables", constant(_start(v)), v in self.kept))
         return out
 
+    def assignments(self, transition: m.ResultTransition) -> list[str]:
+        """The ``self._assign(...)`` call of a transition's assignments, as lines."""
+        items = []
+        for a in transition.assignments:
+            label = f"{a.variable.owner}.{a.variable.name}"
+            field = self.names.variables[a.variable]
+            parts = [repr(field), repr(step_path(a.steps)), repr(label), f"lambda: {self.py(a.value)}"]
+            items.append(f"({', '.join(parts)}, {_type_check(a.variable, a.steps)})")
+        if len(items) <= 1:
+            return [f"self._assign({item})" for item in items]
+        return ["self._assign(", *(f"{INDENT}{item}," for item in items), ")"]
+
     @staticmethod
-    def type_check(v: m.Variable, steps: tuple[m.Step, ...]) -> str:
-        """A condition on ``{}`` (the new value) that keeps the variable inside its type."""
-        t = v.type
-        if steps:
-            return ""
-        if isinstance(t, m.EnumType):
-            return "{} in " + repr(tuple(x.name for x in t.values))
-        if isinstance(t, m.BasicType) and t.is_ranged_integer:
-            return f"isinstance({{}}, int) and {t.low} <= {{}} <= {t.high}"
-        if isinstance(t, m.BasicType) and t.kind is m.BasicKind.BOOLEAN:
-            return "isinstance({}, bool)"
-        if isinstance(t, m.BasicType) and t.kind is m.BasicKind.INTEGER:
-            return "isinstance({}, int) and not isinstance({}, bool)"
-        if isinstance(t, m.BasicType) and t.kind is m.BasicKind.DOUBLE:
-            return "isinstance({}, (int, float)) and not isinstance({}, bool)"
-        if isinstance(t, m.BasicType) and t.kind is m.BasicKind.STRING:
-            return "isinstance({}, str)"
-        return ""
-
-    def assignments(self, transition: m.ResultTransition) -> tuple[Assign, ...]:
-        from robosc.runtime.pyexpr import steps as step_text
-
-        return tuple(
-            Assign(
-                self.names.variables[a.variable],
-                step_text(a.steps),
-                self.py(a.value),
-                f"{a.variable.owner}.{a.variable.name}",
-                self.type_check(a.variable, a.steps),
-            )
-            for a in transition.assignments
-        )
+    def branch_lines(
+        field: str, branches: list[tuple[str | None, str, str | None, list[str]]], gated: bool
+    ) -> list[str]:
+        """if / elif over an automaton's ways to take part in an event: (source, guard,
+        target, assignment lines). Unconditional where there is one way and the event's
+        condition already requires it (``gated``), or it is taken from every state."""
+        lines: list[str] = []
+        first = True
+        for source, guard, target, assigns in branches:
+            body = list(assigns)
+            if target is not None and target != source:
+                body.append(f"self.{field} = {target!r}")
+            if not body:
+                continue
+            test = conjunction(["True" if source is None else f"self.{field} == {source!r}", guard])
+            if first and (test == "True" or (gated and len(branches) == 1)):
+                return body
+            if len(body) == 1 and len(test) + len(body[0]) < 80:
+                lines.append(f"{'if' if first else 'elif'} {test}: {body[0]}")
+            else:
+                lines.append(f"{'if' if first else 'elif'} {test}:")
+                lines += [INDENT + line for line in body]
+            first = False
+        return lines
 
     # -- events --------------------------------------------------------------------------------
-    def component_part(self, event: Event, automaton: Automaton) -> Part:
+    def component_part(self, event: Event, automaton: Automaton, gated: bool) -> tuple[list[str], list[str]]:
+        """(effect lines, Python conditions where the component can take part)."""
         component = automaton.component
         assert component is not None and component.automaton is not None
+        field = self.automaton_field[automaton]
         branches = []
+        gates = []
         for transition in component.automaton.transitions:
             if event_of(self.network, transition) is not event:
                 continue
-            assignments: tuple[Assign, ...] = ()
+            assigns: list[str] = []
             if isinstance(transition, m.TauTransition):
                 guard = self.py(transition.guard)
             else:
-                guard, assignments = "True", self.assignments(transition)
+                guard, assigns = "True", self.assignments(transition)
             source, target = transition.source, transition.target
-            branches.append(
-                Branch(source.name if source else None, guard, target.name if target else None, assignments)
-            )
-        return Part(self.automaton_field[automaton], automaton.name, tuple(branches))
+            branches.append((source.name if source else None, guard, target.name if target else None, assigns))
+            here = "True" if source is None else f"self.{field} == {source.name!r}"
+            gates.append(conjunction([here, guard]))
+        return self.branch_lines(field, branches, gated), gates
 
-    def plant_part(self, event: Event, automaton: Automaton) -> Part:
-        branches = tuple(
-            Branch(
-                e.source.name if len(automaton.locations) > 1 else None,
-                self.py(e.guard),
-                e.target.name if e.target is not e.source else None,
-            )
-            for e in automaton.edges
-            if e.event is event
-        )
-        return Part(self.automaton_field[automaton], automaton.name, branches)
+    def plant_part(self, event: Event, automaton: Automaton) -> tuple[list[str], list[str]]:
+        field = self.automaton_field[automaton]
+        branches: list[tuple[str | None, str, str | None, list[str]]] = []
+        gates = []
+        for e in automaton.edges:
+            if e.event is not event:
+                continue
+            source = e.source.name if len(automaton.locations) > 1 else None
+            guard = self.py(e.guard)
+            branches.append((source, guard, e.target.name if e.target is not e.source else None, []))
+            gates.append(conjunction(["True" if source is None else f"self.{field} == {source!r}", guard]))
+        return self.branch_lines(field, branches, True), gates  # the plant's condition is always checked first
 
-    def gate(self, part: Part) -> str:
-        """Where ``part`` can take part in its event (as Python)."""
-        options = []
-        for b in part.branches:
-            here = "True" if b.source is None else f"self.{part.field} == {b.source!r}"
-            options.append(conjunction([here, b.guard]))
+    @staticmethod
+    def gate(options: list[str]) -> str:
+        """Where an automaton can take part in its event (as Python)."""
         if not options:
             return "False"
         if "True" in options:
@@ -359,52 +376,57 @@ class _Planner:
         return options[0] if len(options) == 1 else " or ".join(f"({o})" for o in options)
 
     def event(self, event: Event) -> EventPlan:
-        parts: list[Part] = []
+        effect: list[str] = []
         gates: list[str] = []
         for automaton in self.network.automata:
             if event not in automaton.alphabet:
                 continue
             if automaton.kind is AutomatonKind.COMPONENT:
-                part = self.component_part(event, automaton)
                 total = not event.controllable or event.kind is K.CANCEL  # responsiveness
+                lines, options = self.component_part(event, automaton, not total)
                 if not total:
-                    gates.append(self.gate(part))
+                    gates.append(self.gate(options))
             else:
-                part = self.plant_part(event, automaton)
-                gates.append(self.gate(part))
-            parts.append(part)
+                lines, options = self.plant_part(event, automaton)
+                gates.append(self.gate(options))
+            effect += lines
         plant = conjunction(gates)
         supervisor = "True"
         if event.controllable:
             guard = self.result.guard(event.name)
             supervisor = conjunction([self.py(guard.required), self.py(guard.added)])
-        communication = None
-        convert = None
-        data = None
-        signature = None
+        communication = convert = data = signature = None
+        computed = False
         if event.communication is not None:
             communication = self.communications[event.communication]
             t = received_type(event)
             if isinstance(t, m.EnumType):
-                convert = self.conversion(t).function
+                c = self.conversion(t)
+                convert = f"({c.function}, {c.enum!r}, {c.default!r})"
             is_sent = event.kind in (K.MESSAGE, K.TRIGGER) and event.controllable
             if is_sent and event.communication in self.data_plants:
-                data = self.data_plants[event.communication].method
+                d = self.data_plants[event.communication]
+                if d.constant:
+                    data = f"{d.table}[self.{d.field}]"
+                else:
+                    data, computed = f"self._provided({event.name!r}, self.{d.method})", True
                 provides = [p for p in self.model.provides if p.communication is event.communication]
-                if len(provides) == 1:
-                    signature = _signature(provides[0].data)
+                alternatives = [_signature(p.data) for p in provides]
+                signature = "(" + "".join(f"{a}, " for a in alternatives).rstrip() + ")"
+        prefix = "e" if event.controllable else "u"
         return EventPlan(
             event.name,
-            identifier(event.name.replace(".", "_")),
+            self.ids.new(prefix, event.name.replace(".", "_")),
             event.controllable,
             event.kind.value,
-            tuple(p for p in parts if any(b.changes for b in p.branches)),
             conjunction([plant, supervisor]),
             plant,
             supervisor,
+            tuple(effect),
             communication,
             convert,
             data,
+            computed,
             signature,
         )
 
@@ -425,7 +447,6 @@ class _Planner:
             data_kind = t.kind.value if isinstance(t, m.BasicType) else "object"
         return Communication(
             c.name,
-            identifier(c.name),
             kind,
             c.ros_name,
             component.name,
@@ -433,6 +454,7 @@ class _Planner:
             interface.ros_type if interface else None,
             data_kind,
             c.span,
+            interface.span if interface else None,
         )
 
     def data_plant(self, automaton: Automaton) -> DataPlant:
@@ -453,7 +475,8 @@ class _Planner:
         return DataPlant(
             self.automaton_field[automaton],
             comm_name,
-            identifier("data", comm_name),
+            self.ids.new("data", comm_name),
+            self.ids.new("DATA", comm_name),
             tuple(choices),
             none_event,
             none_enabled,
@@ -470,11 +493,6 @@ class _Planner:
                 assert event.communication is not None
                 self.data_plants[event.communication] = self.data_plant(automaton)
         events = tuple(self.event(e) for e in self.network.events if e.kind is not K.PROVIDE)
-        # conversions for enum variables assigned from data happen in the handlers
-        for c in self.model.communications:
-            for t in m.data_types_of(c):
-                if isinstance(t, m.EnumType):
-                    self.conversion(t)
         return Plan(
             self.model.name,
             self.model.path,
@@ -488,37 +506,9 @@ class _Planner:
         )
 
 
-def _constant(e: m.Expr) -> object:
-    if isinstance(e, m.Literal):
-        return e.value
-    if isinstance(e, m.Unary) and e.op == "-" and isinstance(e.operand, m.Literal):
-        value = e.operand.value
-        return -value if isinstance(value, int | float) and not isinstance(value, bool) else None
-    return None
-
-
-def _signature(data: m.Expr | m.ObjectValue) -> str | None:
-    """The fields of provided data that are constants, as a Python literal (nested dicts):
-    what tells the messages of events sharing a topic apart."""
-    if isinstance(data, m.ObjectValue):
-        items = []
-        for f in data.fields:
-            inner = _signature(f.value)
-            if inner is not None:
-                items.append(f"{f.property.name!r}: {inner}")
-        return "{" + ", ".join(items) + "}" if items else None
-    value = _constant(data)
-    return constant(value) if value is not None else None
-
-
-def _expressions(data: m.Expr | m.ObjectValue) -> list[m.Expr]:
-    if isinstance(data, m.ObjectValue):
-        return [e for f in data.fields for e in _expressions(f.value)]
-    return list(m.walk(data))
-
-
 def plan(result: SynthesisResult) -> Plan:
     """Lay out a successful synthesis result for code generation."""
     if not result.ok:
         raise ValueError("no supervisor to run: synthesis failed")
     return _Planner(result).build()
+

@@ -1,12 +1,16 @@
 """Model expressions as Python source text, for the generated supervisor module.
 
 Locations and enum values are strings at run time, so a guard reads like the
-model: ``(self.c_Platform == 'ready' and self.v_Distance_front == 'wall_front')``.
-Every name and string from the model is written with :func:`repr`, never pasted.
+model: ``self.a8_Platform == 'ready' and self.v0_Distance_front == 'wall_front'``.
+Every string from the model is written with :func:`repr`, never pasted, and a
+property whose name is not a plain Python identifier (a keyword reached through
+``^``) is read with ``getattr``.
 """
 
 from __future__ import annotations
 
+import ast
+import keyword
 import math
 import re
 from collections.abc import Mapping
@@ -28,11 +32,31 @@ _OPERATORS = {
 }
 
 
-def identifier(*parts: str) -> str:
-    """A Python identifier made of model names (which are ASCII letters, digits, '_')."""
-    text = "_".join(parts)
-    text = re.sub(r"\W", "_", text, flags=re.ASCII)
-    return text if text and not text[0].isdigit() else f"_{text}"
+class Identifiers:
+    """The one scheme from model names to generated identifiers: a letter prefix, a number
+    that no other identifier with that prefix has, then the model name for the reader
+    (``a8_Platform``, ``v0_Distance_front``, ``e3_pick_c_trigger``). The number alone makes
+    the mapping injective (``A.b_c`` and ``A_b.c`` get different numbers), the prefix keeps
+    keywords and the runtime's own names (which carry no digit) out of reach."""
+
+    def __init__(self) -> None:
+        self.count: dict[str, int] = {}
+
+    def new(self, prefix: str, *parts: str) -> str:
+        n = self.count.get(prefix, 0)
+        self.count[prefix] = n + 1
+        text = re.sub(r"\W", "_", "_".join(parts), flags=re.ASCII)
+        return f"{prefix}{n}_{text}" if text else f"{prefix}{n}"
+
+
+GENERATED = re.compile(r"^[A-Za-z]+[0-9]+(_|$)")  # what :class:`Identifiers` makes
+
+
+def attribute(base: str, name: str) -> str:
+    """``base.name``, or ``getattr(base, 'name')`` where ``name`` cannot follow a dot."""
+    if name.isidentifier() and not keyword.iskeyword(name) and name.isascii():
+        return f"{base}.{name}"
+    return f"getattr({base}, {name!r})"
 
 
 def constant(value: object) -> str:
@@ -55,14 +79,16 @@ class Names:
     data: str = "value"  # the name the received data has inside a handler
 
 
-def steps(steps: tuple[m.Step, ...]) -> str:
-    out = []
+def access(base: str, steps: tuple[m.Step, ...]) -> str:
+    """``base`` followed by property and index steps."""
     for step in steps:
-        if isinstance(step, m.FieldStep):
-            out.append("." + identifier(step.property.name))
-        else:
-            out.append(f"[{step.index}]")
-    return "".join(out)
+        base = attribute(base, step.property.name) if isinstance(step, m.FieldStep) else f"{base}[{step.index}]"
+    return base
+
+
+def step_path(steps: tuple[m.Step, ...]) -> tuple[str | int, ...]:
+    """Steps as plain data for the runtime: property names and indices."""
+    return tuple(s.property.name if isinstance(s, m.FieldStep) else s.index for s in steps)
 
 
 def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
@@ -75,9 +101,9 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
         field, location = names.locations[expr.state]
         return f"{owner}.{field} == {location!r}"
     if isinstance(expr, m.VariableRef):
-        return f"{owner}.{names.variables[expr.variable]}{steps(expr.steps)}"
+        return access(f"{owner}.{names.variables[expr.variable]}", expr.steps)
     if isinstance(expr, m.DataRef):
-        return f"{names.data}{steps(expr.steps)}"
+        return access(names.data, expr.steps)
     if isinstance(expr, m.Unary):
         inner = _operand(expr.operand, names, owner)
         return f"not {inner}" if expr.op == "!" else f"-{inner}"
@@ -93,15 +119,31 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
 
 def _operand(expr: m.Expr, names: Names, owner: str) -> str:
     text = python(expr, names, owner)
-    simple = isinstance(expr, m.Literal | m.EnumLiteral | m.VariableRef | m.DataRef)
+    simple = isinstance(expr, m.EnumLiteral | m.VariableRef | m.DataRef) or (
+        isinstance(expr, m.Literal) and not (isinstance(expr.value, int | float) and expr.value < 0)
+    )
     return text if simple else f"({text})"
 
 
 def conjunction(parts: list[str]) -> str:
-    """``a and b and c`` of already-compiled conditions (``True`` for none)."""
-    kept = [p for p in parts if p != "True"]
-    if not kept:
+    """``a and b and c`` of already-compiled conditions (``True`` for none), each conjunct
+    once, without redundant parentheses."""
+    conjuncts: list[ast.expr] = []
+    seen: set[str] = set()
+    for part in parts:
+        for c in _conjuncts(ast.parse(part, mode="eval").body):
+            key = ast.dump(c)
+            if key not in seen and not (isinstance(c, ast.Constant) and c.value is True):
+                seen.add(key)
+                conjuncts.append(c)
+    if not conjuncts:
         return "True"
-    if len(kept) == 1:
-        return kept[0]
-    return " and ".join(f"({p})" if " or " in p or p.startswith("not ") else p for p in kept)
+    if len(conjuncts) == 1:
+        return ast.unparse(conjuncts[0])
+    return ast.unparse(ast.BoolOp(op=ast.And(), values=conjuncts))
+
+
+def _conjuncts(e: ast.expr) -> list[ast.expr]:
+    if isinstance(e, ast.BoolOp) and isinstance(e.op, ast.And):
+        return [c for v in e.values for c in _conjuncts(v)]
+    return [e]

@@ -26,6 +26,7 @@ from typing import Any, TextIO
 from robosc.language import model as m
 from robosc.plant.network import Network, received_type
 from robosc.runtime.module import module_name, render_module
+from robosc.runtime.onboard.values import Data, plain
 from robosc.runtime.plan import Plan
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.result import SynthesisResult
@@ -53,8 +54,10 @@ class Outcome:
 
 
 def load_module(plan: Plan) -> types.ModuleType:
-    """The generated supervisor module of ``plan``, imported from its rendered text."""
+    """The generated supervisor module of ``plan``, imported from its rendered text; it
+    runs on this process's copy of the runtime (:mod:`robosc.runtime.onboard`)."""
     module = types.ModuleType(module_name(plan))
+    module.__package__ = "robosc.runtime"  # so that its ``from .onboard import ...`` finds the runtime
     code = compile(render_module(plan), f"<generated {module_name(plan)}.py>", "exec")
     exec(code, module.__dict__)
     return module
@@ -74,17 +77,16 @@ class Simulator:
         self.plan = plan
         self.module = load_module(plan)
         self.warnings: list[str] = []
-        self.supervisor: Any = self.module.Supervisor(seed=seed, warn=self.warnings.append, observer=self._observe)
+        self.supervisor: Any = self.module.Robot(seed=seed, warn=self.warnings.append, observer=self._observe)
         self.step = 0
         self.log = log
         self.on_event = on_event
         self.start = time.monotonic()
         self.events: list[str] = []
-        fields = dict(plan.automata)
         self._locations = []
-        for automaton in self.network.automata:
+        for automaton, (_, field) in zip(self.network.automata, plan.automata, strict=True):  # network order
             by_name = {loc.name: loc for loc in automaton.locations}
-            self._locations.append((fields[automaton.name], by_name))
+            self._locations.append((field, by_name))
         variable_fields = dict(plan.variables)
         self._variables = []
         for v in self.network.variables:
@@ -153,7 +155,7 @@ class Simulator:
                 "step": self.step,
                 "event": name,
                 "controllable": controllable,
-                "data": self.module.plain(data),
+                "data": plain(data),
                 "state": self.supervisor.snapshot(),
             }
             if self.log is not None:
@@ -213,17 +215,17 @@ class Simulator:
                 raise CommandError(f"sleep takes seconds, not '{rest}'") from None
             time.sleep(max(0.0, min(seconds, 3600.0)))
             return Outcome(())
-        if word in self.module.CONTROLLABLE:
+        if word in self.supervisor.CONTROLLABLE:
             if rest:
                 raise CommandError(f"{word} is controllable: the supervisor provides its data")
             return self.perform(word)
-        if word in self.module.UNCONTROLLABLE:
+        if word in self.supervisor.UNCONTROLLABLE:
             value, raw = self.parse_data(word, rest)
             return self.deliver(word, value, raw)
         raise CommandError(f"unknown command or event '{word}'" + _suggest(word, self.event_names()))
 
     def event_names(self) -> list[str]:
-        return [*self.module.CONTROLLABLE, *self.module.UNCONTROLLABLE]
+        return [*self.supervisor.CONTROLLABLE, *self.supervisor.UNCONTROLLABLE]
 
     def parse_data(self, name: str, text: str) -> tuple[object, bool]:
         if not text:
@@ -236,7 +238,7 @@ class Simulator:
         except json.JSONDecodeError as error:
             hint = f" (or one of {', '.join(v.name for v in enum.values)})" if enum is not None else ""
             raise CommandError(f"data for {name} must be JSON{hint}: {error.msg}") from None
-        return self.module.Data.wrap(parsed), True
+        return Data.wrap(parsed), True
 
     def received_enum(self, name: str) -> m.EnumType | None:
         t = received_type(self.network.event(name))
@@ -246,7 +248,7 @@ class Simulator:
         name, _, wanted = text.partition(" ")
         wanted = wanted.strip()
         snapshot = self.snapshot()
-        found = {**snapshot["automata"], **snapshot["variables"]}
+        found = {**snapshot["communications"], **snapshot["data"], **snapshot["automata"], **snapshot["variables"]}
         if name not in found:
             raise CommandError(f"expect: no automaton or variable '{name}'" + _suggest(name, list(found)))
         actual = found[name]
@@ -270,7 +272,7 @@ class Simulator:
     def random_data(self, name: str, rng: random.Random) -> object:
         """Random data of the type the event carries (plain values, Data objects, lists)."""
         t = received_type(self.network.event(name))
-        return self.module.Data.wrap(_random_value(t, rng)) if t is not None else None
+        return Data.wrap(_random_value(t, rng)) if t is not None else None
 
 
 def _random_value(t: m.DataType, rng: random.Random, depth: int = 0) -> object:

@@ -1,0 +1,333 @@
+# -*- coding: utf-8 -*-
+"""What a generated ROS node does around its supervisor, middleware aside.
+
+:class:`NodeCore` is shared by the rospy and rclpy adapters (``ros1.py``,
+``ros2.py``), which supply publishers, subscriptions, clients and servers. Two
+modes (SEMANTICS.md section 6): ``controller`` (the supervisor drives the robot)
+and ``supervisor`` (a supervision layer between an existing controller and the
+robot: each command is forwarded only as an event the supervisor allows, else
+blocked and reported on ``blocked``; data from the robot goes on to the
+controller). Names are used as the model gives them: relative ones resolve in
+the node's namespace; the node's own topics (``state``, ``blocked``) are relative.
+"""
+
+from __future__ import absolute_import
+
+import json
+import math
+import os
+import re
+import sys
+import time
+
+from .messages import Unsendable, candidates, fill, received, wire_type
+from .recording import EventLog, Recorder, writable
+from .supervisor import Warnings
+from .values import finite, plain
+
+MODES = ("controller", "supervisor")
+CONTROLLER_PREFIX = "robosc/controller"  # where a supervision layer meets the controller
+STATE_TOPIC = "state"
+BLOCKED_TOPIC = "blocked"
+
+
+def default_name(robot_class):
+    """The node's name: ``maze_solver_robosc`` for robot ``MazeSolver``."""
+    snake = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", robot_class.ROBOT).lower()
+    return re.sub(r"[^a-z0-9_]", "_", snake) + "_robosc"
+
+
+class Parameter(object):
+    """A node parameter: its default, what it means, and the values it takes."""
+
+    def __init__(self, name, default, description, low=None, high=None):
+        self.name = name
+        self.default = default
+        self.description = description
+        self.low = low
+        self.high = high
+
+    def check(self, value):
+        """``(value, None)`` for a good value (an integer is taken for a float), else
+        ``(default, why)``."""
+        kind = type(self.default)
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if type(value) is not kind:
+            return self.default, "%s must be a %s, not %r" % (self.name, kind.__name__, value)
+        if kind in (int, float):
+            if kind is float and not math.isfinite(value):
+                return self.default, "%s must be a finite number, not %r" % (self.name, value)
+            if (self.low is not None and value < self.low) or (self.high is not None and value > self.high):
+                return self.default, "%s must be within %s..%s, not %r" % (self.name, self.low, self.high, value)
+        return value, None
+
+
+PARAMETERS = (
+    Parameter("rate", 10.0, "controller cycles per second (a supervision layer only publishes its state)", 0.01, 1000.0),
+    Parameter("seed", -1, "seed of the controller's random choices (-1: different every run)", -1, 2**31 - 1),
+    Parameter("event_log", "", "file to append every event to, as JSON Lines (empty: none)"),
+    Parameter("event_log_max_bytes", 10000000, "rotate the event log to FILE.1 at this size (0: no bound)", 0, 2**62),
+    Parameter("publish_state", False, "publish the state as JSON on 'state' after each cycle"),
+    Parameter("tick_on_message", False, "run a cycle right after each message from the robot"),
+    Parameter("view_port", 0, "serve the live view on http://127.0.0.1:PORT/ (0: off)", 0, 65535),
+    Parameter("qos_depth", 10, "queue depth of every publisher and subscription", 1, 10000),
+    Parameter("server_timeout", 5.0, "seconds to wait for a service or action server before a call fails", 0.0, 3600.0),
+)
+
+
+def controller_side(name):
+    """Where a supervision layer offers ``name`` to the controller: ``/cmd_vel`` ->
+    ``/robosc/controller/cmd_vel``, ``cmd_vel`` -> ``robosc/controller/cmd_vel``."""
+    if name.startswith("/"):
+        return "/" + CONTROLLER_PREFIX + name
+    if name.startswith("~"):
+        return CONTROLLER_PREFIX + "/" + name.lstrip("~/")
+    return CONTROLLER_PREFIX + "/" + name
+
+
+class Topic(object):
+    """A topic the node reads (``events`` the robot reports) or writes (commands)."""
+
+    def __init__(self, name, communications, events):
+        self.name = name
+        self.communications = communications  # the model's communications on it (one type)
+        self.events = events
+        self.package, self.type_name = wire_type(communications[0])
+        self.type = None  # the message class, loaded by the adapter
+        self.publisher = None
+        self.forward = None  # supervision layer: the other side of the topic
+
+
+class Call(object):
+    """A service or action the node calls, with its events."""
+
+    def __init__(self, communication, events):
+        self.communication = communication
+        self.name = communication.ros_name
+        self.kind = communication.kind
+        self.package, _, self.type_name = (communication.interface or "/").partition("/")
+        self.trigger = events.get("trigger")
+        self.response = events.get("response")
+        self.error = events.get("error")
+        self.feedback = events.get("feedback")
+        self.cancel = events.get("cancel")
+        self.type = self.request = None  # classes, loaded by the adapter
+        self.client = None
+        self.goal = 0  # which goal is current; callbacks of older ones are ignored
+        self.handle = None
+
+
+class NodeCore(object):
+    """The node's work, middleware aside. An adapter calls :meth:`setup`, creates what
+    :attr:`inputs`, :attr:`outputs`, :attr:`service_calls` and :attr:`action_calls` need,
+    and implements ``publish``, ``publish_text``, ``call_service``, ``start_goal`` and
+    ``cancel_goal``. (Attribute names differ from rclpy's Node, which the ROS 2 adapter
+    also is.)"""
+
+    def setup(self, robot_class, mode, parameters, log):
+        """``parameters``: name -> value as given (missing: default); bad values are
+        refused with a log line and replaced by the default."""
+        if mode not in MODES:
+            raise ValueError("mode must be controller or supervisor")
+        self.mode = mode
+        self.log = log
+        self.params = {}
+        for p in PARAMETERS:
+            value, why = p.check(parameters.get(p.name, p.default))
+            if why is not None:
+                log("error", "parameter refused: %s; using %r" % (why, p.default))
+            self.params[p.name] = value
+        seed = self.params["seed"]
+        self.warnings = Warnings(lambda message: self.log("warning", message))
+        self.supervisor = robot_class(seed=seed if seed >= 0 else None, warn=self.warnings)
+        self.supervisor.send = self.send
+        self.sinks = []
+        self.event_log = None
+        path = self.params["event_log"]
+        if path:
+            why = writable(path)
+            if why is None:
+                self.event_log = EventLog(path, self.params["event_log_max_bytes"])
+                self.sinks.append(self.event_log)
+            else:
+                log("error", "parameter refused: event_log %r cannot be written (%s); no event log" % (path, why))
+        self.blocked_count = self.forwarded_count = 0
+        self._plan_routes(robot_class)
+
+    def _plan_routes(self, robot_class):
+        by_comm = {}
+        for event in robot_class.EVENTS:
+            if event.communication is not None:
+                by_comm.setdefault(event.communication, {})[event.kind] = event
+        self.inputs, self.outputs, self.service_calls, self.action_calls = {}, {}, [], []
+        self.route = {}  # controllable event name -> Topic or Call that carries it
+        for c in robot_class.COMMUNICATIONS:
+            events = by_comm.get(c.name, {})
+            if c.kind in ("outgoing", "incoming"):
+                table = self.inputs if c.kind == "outgoing" else self.outputs
+                topic = table.get(c.ros_name)
+                if topic is None:
+                    topic = table[c.ros_name] = Topic(c.ros_name, [c], [])
+                else:
+                    topic.communications.append(c)
+                if "message" in events:
+                    topic.events.append(events["message"])
+                    self.route[events["message"].name] = topic
+                continue
+            call = Call(c, events)
+            (self.service_calls if c.kind == "service" else self.action_calls).append(call)
+            for kind in ("trigger", "cancel"):
+                if kind in events:
+                    self.route[events[kind].name] = call
+
+    def start_recording(self, live_view=None):
+        """Events go to the event log and the live view (a sink), if any."""
+        if live_view is not None:
+            self.sinks.append(live_view)
+        if self.sinks:
+            self.supervisor.observer = Recorder(self.supervisor, self.sinks)
+
+    def open_live_view(self, robot_class):
+        """The live view on 127.0.0.1:``view_port`` (the page generated next to the robot's
+        module), or None when it is off or cannot start."""
+        port = self.params["view_port"]
+        if not port:
+            return None
+        from .live_server import LiveView
+
+        module = sys.modules.get(robot_class.__module__)
+        folder = os.path.dirname(os.path.abspath(getattr(module, "__file__", None) or "."))
+        page = os.path.join(folder, "live_view.html")
+        try:
+            with open(page, "rb") as handle:
+                view = LiveView(handle.read(), port=port)
+        except (OSError, ValueError) as error:
+            self.log("error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error))
+            return None
+        view.last = {"time": round(time.time(), 6), "event": None, "controllable": False, "data": None,
+                     "state": self.supervisor.snapshot()}
+        self.log("info", "live view on %s" % view.url)
+        return view
+
+    # ---- the cycle -----------------------------------------------------------------------
+    def cycle(self):
+        """The timer: a controller's tick, then the state if asked for."""
+        if self.mode == "controller":
+            try:
+                self.supervisor.tick()
+            except Exception as error:  # keep the node alive; the state is unchanged
+                self.warnings("tick failed: %s: %s" % (type(error).__name__, error), "tick")
+        if self.params["publish_state"]:
+            self.publish_state()
+
+    def after_message(self):
+        if self.mode == "supervisor":
+            self.supervisor.settle()
+        elif self.params["tick_on_message"]:
+            self.supervisor.tick()
+
+    def publish_state(self):
+        self.publish_text(STATE_TOPIC, self.supervisor.to_json())
+
+    # ---- data from the robot ---------------------------------------------------------------
+    def receive(self, topic, message):
+        """A message on a topic the robot publishes: each event on it, then what follows."""
+        try:
+            for event in topic.events:
+                comm = self.supervisor.COMMUNICATION[event.communication]
+                self.supervisor.deliver(event.name, received(comm, message))
+            self.after_message()
+        except Exception as error:  # a malformed message must not stop the node
+            self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
+
+    def answer(self, event, value):
+        """A service's or action's response, error or feedback came back."""
+        if event is None:
+            return
+        try:
+            self.supervisor.deliver(event.name, value)
+            self.after_message()
+        except Exception as error:
+            self.warnings("%s: %s: %s" % (event.name, type(error).__name__, error), "answer " + event.name)
+
+    # ---- commands: the supervisor performs a controllable event ----------------------------
+    def send(self, name, data):
+        """Put the controllable event ``name`` on the middleware; False refuses it (not performed)."""
+        place = self.route.get(name)
+        if place is None:
+            return True  # tau, reset, and data events have nothing to send
+        if isinstance(place, Topic):
+            if self.mode == "supervisor":
+                return self.publish(place, data)  # the controller's own message, already checked
+            try:
+                message = fill(place.type(), data, place.name)
+            except Unsendable as error:
+                self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
+                return False
+            return self.publish(place, message)
+        event = self.supervisor.EVENT[name]
+        if self.mode == "supervisor":
+            return self.forward_call(place, event, data)
+        if event.kind == "cancel":
+            return self.cancel_goal(place)
+        try:
+            request = fill(place.request(), data, place.name)
+        except Unsendable as error:
+            self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
+            return False
+        if place.kind == "service":
+            return self.call_service(place, request)
+        return self.start_goal(place, request)
+
+    def forward_call(self, call, event, data):
+        """Supervision layer: a call or goal is forwarded by the adapter's server callback."""
+        return True
+
+    # ---- supervision layer: commands from the controller ----------------------------------
+    def request(self, topic, message):
+        """The controller published ``message`` on ``topic``: forwarded as the first event it
+        matches that the supervisor allows, else blocked and reported. Never forwarded
+        as an event it does not match."""
+        try:
+            found = candidates(message, topic.events)
+            for event in found:
+                if self.supervisor.perform(event.name, message):
+                    self.forwarded_count += 1
+                    self.supervisor.settle()
+                    return True
+        except Exception as error:
+            self.warnings("command on %s: %s: %s" % (topic.name, type(error).__name__, error), "request " + topic.name)
+            found = []
+        if not found:
+            why = "matches no event on the topic" if finite(message) else "a number in it is not finite"
+            self.blocked(None, topic.name, why, message)
+        else:
+            self.blocked(found[0].name, topic.name, "the supervisor does not allow it now", message)
+        return False
+
+    def blocked(self, event, where, reason, data=None):
+        """Report a blocked request on ``blocked`` (JSON) and in the log (rate-limited)."""
+        self.blocked_count += 1
+        self.warnings("blocked %s on %s: %s" % (event or "a command", where, reason), "blocked %s %s" % (event, where))
+        report = {"event": event, "topic": where, "reason": reason, "data": plain(data), "state": self.supervisor.snapshot()}
+        try:
+            self.publish_text(BLOCKED_TOPIC, json.dumps(report, sort_keys=True))
+        except Exception as error:
+            self.warnings("cannot report a blocked command: %s" % (error,), "blocked report")
+
+    # ---- implemented by the adapters -------------------------------------------------------
+    def publish(self, topic, message):
+        raise NotImplementedError
+
+    def publish_text(self, topic_name, text):
+        raise NotImplementedError
+
+    def call_service(self, call, request):
+        raise NotImplementedError
+
+    def start_goal(self, call, goal):
+        raise NotImplementedError
+
+    def cancel_goal(self, call):
+        raise NotImplementedError

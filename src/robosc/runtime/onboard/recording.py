@@ -1,0 +1,76 @@
+# -*- coding: utf-8 -*-
+"""Where events go besides the supervisor: the event log (JSON Lines, bounded in size)
+and any other sink (the live view), each record with its time, data and the state."""
+
+from __future__ import absolute_import
+
+import json
+import os
+import time
+
+from .values import plain
+
+
+class Recorder(object):
+    """An observer for the supervisor: hands each event, with its time, data and the
+    resulting state, to every sink. A failing sink is reported, never fatal."""
+
+    def __init__(self, supervisor, sinks, clock=time.time):
+        self.supervisor = supervisor
+        self.sinks = list(sinks)
+        self.clock = clock
+
+    def __call__(self, event, controllable, data):
+        record = {
+            "time": round(self.clock(), 6),
+            "event": event,
+            "controllable": controllable,
+            "data": plain(data),
+            "state": self.supervisor.snapshot(),
+        }
+        for sink in self.sinks:
+            try:
+                sink(record)
+            except Exception as error:  # a full disk or a closed page must not stop the node
+                self.supervisor.warn("event not recorded: %s: %s" % (type(error).__name__, error), "record")
+
+
+class EventLog(object):
+    """Appends records to ``path`` as JSON lines. When the file would pass ``max_bytes``
+    (0: no bound), it is renamed to ``path.1`` (replacing an older one) and a new file is
+    started, so the log never takes more than about twice ``max_bytes``."""
+
+    def __init__(self, path, max_bytes=0):
+        self.path = path
+        self.max_bytes = max_bytes
+        self.handle = open(path, "a")
+        self.size = self.handle.tell()
+        self.rotations = 0
+
+    def __call__(self, record):
+        line = json.dumps(record, sort_keys=True) + "\n"
+        if self.max_bytes and self.size + len(line) > self.max_bytes and self.size > 0:
+            self.rotate()
+        self.handle.write(line)
+        self.handle.flush()
+        self.size += len(line)
+
+    def rotate(self):
+        self.handle.close()
+        os.replace(self.path, self.path + ".1")
+        self.handle = open(self.path, "a")
+        self.size = 0
+        self.rotations += 1
+
+    def close(self):
+        self.handle.close()
+
+
+def writable(path):
+    """None if ``path`` can be appended to, else why not."""
+    try:
+        with open(path, "a"):
+            pass
+    except (OSError, ValueError) as error:
+        return "%s: %s" % (type(error).__name__, error)
+    return None

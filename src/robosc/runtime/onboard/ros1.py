@@ -1,0 +1,296 @@
+# -*- coding: utf-8 -*-
+"""The rospy adapter (ROS 1): :class:`SupervisorNode` runs a generated robot class. A
+generated package's node script is only::
+
+    from my_robot_robosc.onboard.ros1 import main
+    from my_robot_robosc.my_robot_supervisor import Robot
+    main(Robot, "controller")
+
+rospy runs every callback on a thread of its own, so each one holds the
+supervisor's lock. Services are called on a thread (rospy calls are synchronous)
+and come back as response / error events; actions use actionlib's
+SimpleActionClient. Both wait for their server at most ``~server_timeout``
+seconds, on their thread, so the node keeps running meanwhile. Parameters are
+private (``~rate``, ...) and checked: a bad value is refused with a log line.
+"""
+
+from __future__ import absolute_import, print_function
+
+import sys
+import threading
+import time
+
+import rospy
+
+from .messages import MissingType, load
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, NodeCore, controller_side, default_name
+
+SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
+
+
+
+
+def _log(level, message):
+    {"error": rospy.logerr, "warning": rospy.logwarn}.get(level, rospy.loginfo)(message)
+
+
+class SupervisorNode(NodeCore):
+    def __init__(self, robot_class, mode="controller", node_name=None):
+        rospy.init_node(node_name or default_name(robot_class))
+        given = {}
+        for p in PARAMETERS:
+            try:
+                given[p.name] = rospy.get_param("~" + p.name, p.default)
+            except Exception as error:  # an unreadable parameter server entry
+                _log("error", "parameter %s unreadable: %s" % (p.name, error))
+        self.setup(robot_class, mode, given, _log)
+        self.lock = self.supervisor.lock
+        self._load_types()
+        self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
+        self.start_recording(self.live_view.publish if self.live_view is not None else None)
+        self._create()
+        self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
+
+    def _load_types(self):
+        for topic in list(self.inputs.values()) + list(self.outputs.values()):
+            topic.type = load(topic.package, "msg", topic.type_name)
+        for call in self.service_calls:
+            call.type = load(call.package, "srv", call.type_name)
+            call.request = load(call.package, "srv", call.type_name + "Request")
+        for call in self.action_calls:
+            call.type = load(call.package, "msg", call.type_name + "Action")
+            call.request = load(call.package, "msg", call.type_name + "Goal")
+        self.text_type = load("std_msgs", "msg", "String")
+
+    def _create(self):
+        depth = self.params["qos_depth"]
+        supervising = self.mode == "supervisor"
+        self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
+        if supervising:
+            self.text_publishers[BLOCKED_TOPIC] = rospy.Publisher(BLOCKED_TOPIC, self.text_type, queue_size=10)
+        for topic in self.outputs.values():
+            topic.publisher = rospy.Publisher(topic.name, topic.type, queue_size=depth)
+        for topic in self.inputs.values():
+            if supervising:
+                topic.forward = rospy.Publisher(controller_side(topic.name), topic.type, queue_size=depth)
+        import actionlib
+
+        for call in self.service_calls:
+            call.client = rospy.ServiceProxy(call.name, call.type)
+        for call in self.action_calls:
+            call.client = actionlib.SimpleActionClient(call.name, call.type)
+        # subscriptions and servers last: their callbacks need everything above
+        for topic in self.inputs.values():
+            rospy.Subscriber(topic.name, topic.type, self.locked(self.receive, topic), queue_size=depth)
+        if supervising:
+            for topic in self.outputs.values():
+                rospy.Subscriber(controller_side(topic.name), topic.type, self.locked(self.request, topic), queue_size=depth)
+            for call in self.service_calls:
+                rospy.Service(controller_side(call.name), call.type, self.serve_call(call))
+            for call in self.action_calls:
+                call.server = actionlib.SimpleActionServer(
+                    controller_side(call.name), call.type, execute_cb=self.serve_goal(call), auto_start=False
+                )
+                call.server.start()
+
+    def locked(self, function, *first):
+        """``function(*first, *args)`` holding the lock, never raising into rospy."""
+
+        def run(*args):
+            try:
+                with self.lock:
+                    return function(*(first + args))
+            except Exception as error:
+                self.warnings("%s: %s: %s" % (getattr(function, "__name__", "callback"), type(error).__name__, error))
+                return None
+
+        return run
+
+    def cycle(self, _event=None):
+        NodeCore.cycle(self)
+
+    def receive(self, topic, message):
+        NodeCore.receive(self, topic, message)
+        if topic.forward is not None:
+            topic.forward.publish(message)
+
+    def publish(self, topic, message):
+        topic.publisher.publish(message)
+        return True
+
+    def publish_text(self, topic_name, text):
+        publisher = self.text_publishers.get(topic_name)
+        if publisher is not None:
+            publisher.publish(self.text_type(data=text))
+
+    # ---- services and actions of a controller --------------------------------------------------------
+    def call_service(self, call, request):
+        call.goal += 1
+        thread = threading.Thread(target=self.call_now, args=(call, call.goal, request))
+        thread.daemon = True
+        thread.start()
+        return True
+
+    def call_now(self, call, number, request):
+        """On a thread: wait for the server, call, and report the answer as an event."""
+        response = None
+        try:
+            call.client.wait_for_service(timeout=max(self.params["server_timeout"], 0.001))
+            response = call.client(request)
+        except rospy.ROSException as error:  # no server in time
+            self.warnings("service %s: %s" % (call.name, error), "gone " + call.name)
+        except Exception as error:  # failed on the server
+            self.warnings("service %s failed: %s" % (call.name, error), "failed " + call.name)
+        with self.lock:
+            if number == call.goal:
+                self.answer(call.error if response is None else call.response, response)
+
+    def start_goal(self, call, goal):
+        call.goal += 1
+        thread = threading.Thread(target=self.send_goal_now, args=(call, call.goal, goal))
+        thread.daemon = True
+        thread.start()
+        return True
+
+    def send_goal_now(self, call, number, goal):
+        if not call.client.wait_for_server(rospy.Duration(max(self.params["server_timeout"], 0.001))):
+            self.warnings("action %s: no server after %.1f s; failed" % (call.name, self.params["server_timeout"]),
+                          "gone " + call.name)
+            with self.lock:
+                if number == call.goal:
+                    self.answer(call.error, None)
+            return
+        with self.lock:
+            if number != call.goal:
+                return  # cancelled while waiting for the server
+            call.client.send_goal(
+                goal,
+                done_cb=lambda status, result: self.locked(self.done, call, number, status, result)(),
+                feedback_cb=lambda feedback: self.locked(self.feedback, call, number, feedback)(),
+            )
+
+    def feedback(self, call, number, feedback):
+        if number == call.goal:
+            self.answer(call.feedback, feedback)
+
+    def done(self, call, number, status, result):
+        if number != call.goal:
+            return  # a goal this node cancelled, or an older one
+        self.answer(call.response if status == SUCCEEDED else call.error, result if status == SUCCEEDED else None)
+
+    def cancel_goal(self, call):
+        call.goal += 1  # results of the cancelled goal are ignored
+        try:
+            call.client.cancel_goal()
+        except Exception as error:
+            self.warnings("action %s: cancel failed: %s" % (call.name, error), "cancel " + call.name)
+        return True
+
+    # ---- supervision layer: calls and goals from the controller -------------------------------------------
+    def serve_call(self, call):
+        def serve(request):
+            """The controller calls the service: forwarded if the supervisor allows it."""
+            with self.lock:
+                allowed = self.supervisor.perform(call.trigger.name, request)
+                if not allowed:
+                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", request)
+            if not allowed:
+                raise rospy.ServiceException("blocked by the supervisor")
+            try:
+                call.client.wait_for_service(timeout=max(self.params["server_timeout"], 0.001))
+                response = call.client(request)
+            except Exception as error:
+                with self.lock:
+                    self.answer(call.error, None)
+                raise rospy.ServiceException(str(error))
+            with self.lock:
+                self.answer(call.response, response)
+            return response
+
+        return serve
+
+    def serve_goal(self, call):
+        def serve(goal):
+            """The controller sends a goal (on the action server's thread): forwarded if the
+            supervisor allows it, feedback and result passed back."""
+            server = call.server
+            with self.lock:
+                allowed = self.supervisor.perform(call.trigger.name, goal)
+                if allowed:
+                    call.goal += 1
+                    number = call.goal
+                    self.supervisor.settle()
+                else:
+                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", goal)
+            if not allowed:
+                server.set_aborted(text="blocked by the supervisor")
+                return
+            client = call.client
+            if not client.wait_for_server(rospy.Duration(max(self.params["server_timeout"], 0.001))):
+                with self.lock:
+                    if number == call.goal:
+                        self.answer(call.error, None)
+                server.set_aborted(text="no action server")
+                return
+            client.send_goal(goal, feedback_cb=lambda feedback: self.pass_feedback(call, number, feedback))
+            while not client.wait_for_result(rospy.Duration(0.02)):
+                if rospy.is_shutdown():
+                    return
+                if number != call.goal:  # the supervisor cancelled it
+                    client.cancel_goal()
+                    server.set_preempted(text="cancelled by the supervisor")
+                    return
+                if server.is_preempt_requested():
+                    with self.lock:
+                        cancelled = call.cancel is not None and self.supervisor.perform(call.cancel.name)
+                        if cancelled:
+                            self.supervisor.settle()
+                        else:
+                            self.blocked(call.cancel.name if call.cancel else None, call.name,
+                                         "the supervisor does not allow it now")
+                    if cancelled:
+                        client.cancel_goal()
+                        server.set_preempted()
+                        return
+            with self.lock:
+                if number != call.goal:
+                    server.set_preempted(text="cancelled by the supervisor")
+                    return
+                succeeded = client.get_state() == SUCCEEDED
+                result = client.get_result()
+                self.answer(call.response if succeeded else call.error, result if succeeded else None)
+            if succeeded:
+                server.set_succeeded(result)
+            else:
+                server.set_aborted(result)
+
+        return serve
+
+    def pass_feedback(self, call, number, feedback):
+        with self.lock:
+            if number != call.goal:
+                return
+            self.answer(call.feedback, feedback)
+        call.server.publish_feedback(feedback)
+
+    def forward_call(self, call, event, data):
+        if event.kind == "cancel":  # the forwarding loop cancels the robot's goal
+            call.goal += 1
+        return True
+
+
+
+def main(robot_class, mode="controller", node_name=None):
+    """Run the node until shut down; returns the exit status."""
+    try:
+        node = SupervisorNode(robot_class, mode, node_name)
+    except MissingType as error:
+        print("[robosc] %s" % (error,), file=sys.stderr)
+        return 1
+    node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
+    rospy.spin()
+    if node.live_view is not None:
+        node.live_view.close()
+    if node.event_log is not None:
+        node.event_log.close()
+    return 0

@@ -1,0 +1,394 @@
+# -*- coding: utf-8 -*-
+"""The rclpy adapter (ROS 2): :class:`SupervisorNode` is an ``rclpy.node.Node`` that runs a
+generated robot class. A generated package's node module is only::
+
+    from .onboard.ros2 import main
+    from .my_robot_supervisor import Robot
+    main(Robot, "controller")
+
+Parameters are declared with descriptors (read only; see ``node.PARAMETERS``) and
+checked: a bad value is refused with a log line and the default is used. QoS:
+sensor data (``sensor_msgs`` types) is subscribed best effort, so that it reaches the
+node from sensor-data publishers (best effort) and reliable ones alike; other data
+is subscribed reliably (no first message lost while the connection is made), and
+commands are published reliably. Each can be changed per topic with ROS 2's
+``qos_overrides.<topic>.<publisher|subscription>.<policy>`` parameters. A controller runs on the single-threaded executor (no lock needed); a
+supervision layer on a multi-threaded one, every callback holding the supervisor's lock.
+"""
+
+from __future__ import absolute_import
+
+import sys
+import time
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.action import ActionClient, ActionServer, CancelResponse
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.qos_overriding_options import QoSOverridingOptions
+
+from .messages import MissingType, load
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, NodeCore, controller_side, default_name
+
+SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
+SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers
+POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
+
+
+
+
+class SupervisorNode(Node, NodeCore):
+    """The node of a robot's supervisor (``mode`` controller or supervisor)."""
+
+    def __init__(self, robot_class, mode="controller", node_name=None, **kwargs):
+        Node.__init__(self, node_name or default_name(robot_class), **kwargs)
+        given = {}
+        for p in PARAMETERS:
+            descriptor = ParameterDescriptor(description=p.description, read_only=True, dynamic_typing=True)
+            given[p.name] = self.declare_parameter(p.name, p.default, descriptor).value
+        self.setup(robot_class, mode, given, self._log)
+        self.lock = self.supervisor.lock
+        self.spent = []  # timers of finished waits, destroyed at the next cycle
+        self._load_types()
+        self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
+        self.start_recording(self.live_view.publish if self.live_view is not None else None)
+        self._create()
+        self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
+
+    # ---- set-up ----------------------------------------------------------------------------
+    def _log(self, level, message):
+        logger = self.get_logger()  # rclpy wants one severity per line of code that logs
+        if level == "error":
+            logger.error(message)
+        elif level == "warning":
+            logger.warning(message)
+        else:
+            logger.info(message)
+
+    def _load_types(self):
+        for topic in list(self.inputs.values()) + list(self.outputs.values()):
+            topic.type = load(topic.package, "msg", topic.type_name)
+        for call in self.service_calls:
+            call.type = load(call.package, "srv", call.type_name)
+            call.request = call.type.Request
+        for call in self.action_calls:
+            call.type = load(call.package, "action", call.type_name)
+            call.request = call.type.Goal
+        self.text_type = load("std_msgs", "msg", "String")
+
+    def _create(self):
+        depth = self.params["qos_depth"]
+        reliable = QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE)
+        best_effort = QoSProfile(depth=depth, reliability=ReliabilityPolicy.BEST_EFFORT)
+        overrides = QoSOverridingOptions.with_default_policies()
+        supervising = self.mode == "supervisor"
+        self.text_publishers = {STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10)}
+        if supervising:
+            self.text_publishers[BLOCKED_TOPIC] = self.create_publisher(self.text_type, BLOCKED_TOPIC, 10)
+        for topic in self.outputs.values():  # commands to the robot
+            topic.publisher = self.create_publisher(topic.type, topic.name, reliable, qos_overriding_options=overrides)
+            if supervising:  # ... as the controller sends them
+                self.create_subscription(
+                    topic.type, controller_side(topic.name), self.callback(self.request, topic), reliable
+                )
+        for topic in self.inputs.values():  # data from the robot
+            if supervising:
+                topic.forward = self.create_publisher(topic.type, controller_side(topic.name), reliable)
+            qos = best_effort if topic.package == SENSOR_PACKAGE else reliable
+            self.create_subscription(
+                topic.type, topic.name, self.callback(self.receive, topic), qos, qos_overriding_options=overrides
+            )
+        forwarding = ReentrantCallbackGroup()
+        for call in self.service_calls:
+            call.client = self.create_client(call.type, call.name)
+            if supervising:
+                self.create_service(
+                    call.type, controller_side(call.name), self.serve_call(call), callback_group=forwarding
+                )
+        for call in self.action_calls:
+            call.client = ActionClient(self, call.type, call.name)
+            if supervising:
+                call.server = ActionServer(
+                    self,
+                    call.type,
+                    controller_side(call.name),
+                    self.serve_goal(call),
+                    cancel_callback=self.serve_cancel(call),
+                    callback_group=forwarding,
+                )
+
+    def callback(self, function, *first):
+        """``function(*first, *args)`` for rclpy: under the lock in a supervision layer (a
+        multi-threaded executor), never raising into the executor."""
+        locked = self.mode == "supervisor"
+
+        def run(*args):
+            try:
+                if locked:
+                    with self.lock:
+                        return function(*(first + args))
+                return function(*(first + args))
+            except Exception as error:  # keep the node alive
+                self.warnings("%s: %s: %s" % (getattr(function, "__name__", "callback"), type(error).__name__, error))
+                return None
+
+        return run
+
+    # ---- the cycle and data ---------------------------------------------------------------------
+    def cycle(self):
+        for timer in self.spent:
+            self.destroy_timer(timer)
+        self.spent = []
+        NodeCore.cycle(self)
+
+    def receive(self, topic, message):
+        NodeCore.receive(self, topic, message)
+        if topic.forward is not None:
+            topic.forward.publish(message)
+
+    def publish(self, topic, message):
+        topic.publisher.publish(message)
+        return True
+
+    def publish_text(self, topic_name, text):
+        publisher = self.text_publishers.get(topic_name)
+        if publisher is not None:
+            publisher.publish(self.text_type(data=text))
+
+    # ---- services and actions of a controller ------------------------------------------------------
+    def when_ready(self, call, ready, go):
+        """``go()`` once the server is there; the error event after ``server_timeout``
+        seconds without it. Never blocks the executor."""
+        if ready():
+            go()
+            return
+        timeout = self.params["server_timeout"]
+        self.warnings("%s %s is not available; waiting up to %.1f s" % (call.kind, call.name, timeout), "wait " + call.name)
+        deadline = time.monotonic() + timeout
+        number = call.goal
+        state = {}
+
+        def poll():
+            if number != call.goal:  # cancelled meanwhile
+                state["timer"].cancel()
+                self.spent.append(state["timer"])
+            elif ready():
+                state["timer"].cancel()
+                self.spent.append(state["timer"])
+                go()
+            elif time.monotonic() >= deadline:
+                state["timer"].cancel()
+                self.spent.append(state["timer"])
+                self.warnings("%s %s: no server after %.1f s; failed" % (call.kind, call.name, timeout), "gone " + call.name)
+                self.answer(call.error, None)
+
+        state["timer"] = self.create_timer(POLL_SECONDS, self.callback(poll))
+
+    def call_service(self, call, request):
+        call.goal += 1
+        number = call.goal
+
+        def go():
+            future = call.client.call_async(request)
+            future.add_done_callback(self.callback(self.answered, call, number))
+
+        self.when_ready(call, call.client.service_is_ready, go)
+        return True
+
+    def answered(self, call, number, future):
+        if number != call.goal:
+            return
+        try:
+            response = future.result()
+        except Exception as error:
+            self.warnings("service %s failed: %s" % (call.name, error), "failed " + call.name)
+            response = None
+        self.answer(call.error if response is None else call.response, response)
+
+    def start_goal(self, call, goal):
+        call.goal += 1
+        number = call.goal
+
+        def go():
+            future = call.client.send_goal_async(
+                goal, feedback_callback=self.callback(self.feedback, call, number)
+            )
+            future.add_done_callback(self.callback(self.accepted, call, number))
+
+        self.when_ready(call, call.client.server_is_ready, go)
+        return True
+
+    def feedback(self, call, number, message):
+        if number == call.goal:
+            self.answer(call.feedback, message.feedback)
+
+    def accepted(self, call, number, future):
+        try:
+            handle = future.result()
+        except Exception as error:
+            self.warnings("action %s: %s" % (call.name, error), "failed " + call.name)
+            handle = None
+        if number != call.goal:
+            if handle is not None and handle.accepted:
+                handle.cancel_goal_async()  # cancelled before the server accepted it
+            return
+        if handle is None or not handle.accepted:
+            self.answer(call.error, None)
+            return
+        call.handle = handle
+        handle.get_result_async().add_done_callback(self.callback(self.done, call, number))
+
+    def done(self, call, number, future):
+        if number != call.goal:
+            return  # a goal this node cancelled, or an older one
+        try:
+            answer = future.result()
+        except Exception as error:
+            self.warnings("action %s: %s" % (call.name, error), "failed " + call.name)
+            answer = None
+        if answer is not None and answer.status == SUCCEEDED:
+            self.answer(call.response, answer.result)
+        else:
+            self.answer(call.error, None)
+
+    def cancel_goal(self, call):
+        call.goal += 1  # results of the cancelled goal are ignored
+        handle, call.handle = call.handle, None
+        if handle is not None:
+            handle.cancel_goal_async()
+        return True
+
+    # ---- supervision layer: calls and goals from the controller ---------------------------------------
+    def wait_for(self, future, stop=lambda: False):
+        """The result of a future that other executor threads complete (None if it failed)."""
+        while not future.done():
+            if stop() or not rclpy.ok():
+                return None
+            time.sleep(0.001)
+        try:
+            return future.result()
+        except Exception as error:
+            self.warnings("call failed: %s" % (error,), "call failed")
+            return None
+
+    def serve_call(self, call):
+        def serve(request, response):
+            """The controller calls the service (on a thread of its own): forwarded if the
+            supervisor allows it; a blocked call is answered with an empty response."""
+            with self.lock:
+                allowed = self.supervisor.perform(call.trigger.name, request)
+                if not allowed:
+                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", request)
+            if not allowed:
+                return response
+            answer = None
+            if call.client.wait_for_service(timeout_sec=self.params["server_timeout"]):
+                answer = self.wait_for(call.client.call_async(request))
+            with self.lock:
+                self.answer(call.error if answer is None else call.response, answer)
+            return answer if answer is not None else response
+
+        return serve
+
+    def serve_goal(self, call):
+        def serve(goal_handle):
+            """The controller sends a goal (on a thread of its own): forwarded if the supervisor
+            allows it, feedback and result passed back; a blocked goal is aborted."""
+            with self.lock:
+                allowed = self.supervisor.perform(call.trigger.name, goal_handle.request)
+                if allowed:
+                    call.goal += 1
+                    number = call.goal
+                    self.supervisor.settle()
+                else:
+                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", goal_handle.request)
+            if not allowed:
+                goal_handle.abort()
+                return call.type.Result()
+            handle = None
+            if call.client.wait_for_server(timeout_sec=self.params["server_timeout"]):
+                handle = self.wait_for(
+                    call.client.send_goal_async(
+                        goal_handle.request,
+                        feedback_callback=lambda message: self.pass_feedback(call, number, message.feedback, goal_handle),
+                    )
+                )
+            if handle is None or not handle.accepted:
+                with self.lock:
+                    if number == call.goal:
+                        self.answer(call.error, None)
+                goal_handle.abort()
+                return call.type.Result()
+            with self.lock:
+                call.handle = handle
+            answer = self.wait_for(handle.get_result_async(), lambda: number != call.goal)
+            with self.lock:
+                if number != call.goal:  # cancelled, by the controller or by the supervisor
+                    ok = None
+                elif answer is not None and answer.status == SUCCEEDED:
+                    self.answer(call.response, answer.result)
+                    ok = True
+                else:
+                    self.answer(call.error, None)
+                    ok = False
+            if ok is None and goal_handle.is_cancel_requested:
+                goal_handle.canceled()
+            elif ok:
+                goal_handle.succeed()
+            else:
+                goal_handle.abort()
+            return answer.result if answer is not None else call.type.Result()
+
+        return serve
+
+    def pass_feedback(self, call, number, feedback, goal_handle):
+        with self.lock:
+            if number != call.goal:
+                return
+            self.answer(call.feedback, feedback)
+        goal_handle.publish_feedback(feedback)
+
+    def serve_cancel(self, call):
+        def cancel(goal_handle):
+            """The controller cancels its goal: forwarded if the supervisor allows the cancel."""
+            with self.lock:
+                if call.cancel is not None and self.supervisor.perform(call.cancel.name):
+                    self.supervisor.settle()
+                    return CancelResponse.ACCEPT
+                self.blocked(call.cancel.name if call.cancel else None, call.name, "the supervisor does not allow it now")
+                return CancelResponse.REJECT
+
+        return cancel
+
+    def forward_call(self, call, event, data):
+        if event.kind == "cancel":  # the supervisor itself cancels: the forwarding thread ends the goal
+            return self.cancel_goal(call)
+        return True
+
+
+
+def main(robot_class, mode="controller", args=None, node_name=None):
+    """Run the node until shut down; returns the exit status."""
+    rclpy.init(args=args if args is not None else sys.argv)
+    try:
+        node = SupervisorNode(robot_class, mode, node_name)
+    except MissingType as error:
+        print("[robosc] %s" % (error,), file=sys.stderr)
+        rclpy.try_shutdown()
+        return 1
+    node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
+    executor = MultiThreadedExecutor(num_threads=4) if mode == "supervisor" else SingleThreadedExecutor()
+    executor.add_node(node)
+    try:
+        executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node.live_view is not None:
+            node.live_view.close()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0

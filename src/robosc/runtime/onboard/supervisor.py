@@ -1,0 +1,373 @@
+# -*- coding: utf-8 -*-
+"""The supervisor cycle (SEMANTICS.md section 6), the same for every robot.
+
+A generated module subclasses :class:`Supervisor` with what is specific to its
+robot: the state (``FIELDS``), the events (``EVENTS``), the communications
+(``COMMUNICATIONS``), and the methods that hold the model's conditions and
+effects: ``_provide`` (step 1: which data each communication sends),
+``_allowed`` (step 2: the controllable events the plant and the supervisor allow,
+as bound methods), ``_expected`` (which uncontrollable events the plant can take),
+one method per controllable event (``e<N>_<name>``) and one per uncontrollable
+event (``u<N>_<name>``). Generated names always carry a number after a letter
+prefix, so they can never meet a name of this class (a test checks it).
+
+    supervisor = Robot(seed=1)
+    supervisor.deliver("scan", message)   # an uncontrollable event from the middleware
+    supervisor.tick()                     # data events, then one allowed controllable event
+
+Override :meth:`Supervisor.send` to put commands on the middleware.
+"""
+
+from __future__ import absolute_import, print_function
+
+import copy
+import json
+import random
+import sys
+import threading
+import time
+
+from .values import finite, plain
+
+REFUSED = object()  # data that must not be sent (not finite, or not computable)
+KEEP = object()  # an assignment whose value could not be computed keeps the old value
+NO_DATA = "none"  # the location of a data plant where no provide statement holds
+WARNING_INTERVAL = 5.0  # seconds between two reports of the same kind of warning
+
+
+class Event(object):
+    """One event of the network, as the runtime needs it."""
+
+    __slots__ = ("name", "method", "controllable", "kind", "communication", "convert", "signature")
+
+    def __init__(self, name, method, controllable, kind, communication=None, convert=None, signature=None):
+        self.name = name
+        self.method = method  # the generated method performing it
+        self.controllable = controllable
+        self.kind = kind  # message, trigger, response, error, feedback, cancel, reset, tau
+        self.communication = communication  # the communication's name, or None
+        self.convert = convert  # (rules function, enum name, default value) for enum data
+        self.signature = signature  # alternatives of the constant part of the data it sends
+
+    @property
+    def is_request(self):
+        """Sent on the controller's behalf: what a supervision layer forwards or blocks."""
+        return self.controllable and self.kind in ("message", "trigger")
+
+    def __repr__(self):
+        return "Event(%r)" % (self.name,)
+
+
+class Communication(object):
+    """A message, service or action, and where it is on ROS."""
+
+    __slots__ = ("name", "kind", "ros_name", "interface", "data")
+
+    def __init__(self, name, kind, ros_name, interface, data):
+        self.name = name
+        self.kind = kind  # outgoing, incoming, service, action
+        self.ros_name = ros_name  # as the model gives it, e.g. "/scan"
+        self.interface = interface  # "package/Type" of a linked interface, or None
+        self.data = data  # messages: string, boolean, integer, double, none or object
+
+    def __repr__(self):
+        return "Communication(%r)" % (self.name,)
+
+
+class Warnings(object):
+    """Reports through ``sink``, each kind of warning at most once per ``interval`` seconds,
+    with the number of repeats that were held back meanwhile."""
+
+    def __init__(self, sink, interval=WARNING_INTERVAL, clock=time.monotonic):
+        self.sink = sink
+        self.interval = interval
+        self.clock = clock
+        self.last = {}  # kind -> (time of the last report, repeats held back since)
+
+    def __call__(self, message, kind=None):
+        key = kind if kind is not None else message
+        now = self.clock()
+        seen = self.last.get(key)
+        if seen is not None and now - seen[0] < self.interval:
+            self.last[key] = (seen[0], seen[1] + 1)
+            return False
+        if len(self.last) > 1000:  # bounded: forget the oldest kinds
+            for old in sorted(self.last, key=lambda k: self.last[k][0])[:500]:
+                del self.last[old]
+        repeats = seen[1] if seen is not None else 0
+        self.last[key] = (now, 0)
+        try:
+            self.sink(message + (" (and %d more like it)" % repeats if repeats else ""))
+        except Exception:  # a broken log must not stop the supervisor
+            return False
+        return True
+
+
+def _stderr(message):
+    print("[robosc] " + message, file=sys.stderr)
+
+
+def _fits(check, value):
+    """Whether ``value`` is inside a variable's type (``check`` as the generated code gives it)."""
+    if check is None:
+        return True
+    if isinstance(check, tuple):  # an enum's values, or ("integer", low, high)
+        if check and check[0] == "integer":
+            return isinstance(value, int) and not isinstance(value, bool) and check[1] <= value <= check[2]
+        return isinstance(value, str) and value in check
+    if check == "boolean":
+        return isinstance(value, bool)
+    if check == "integer":
+        return isinstance(value, int) and not isinstance(value, bool)
+    if check == "double":
+        return isinstance(value, (int, float)) and not isinstance(value, bool) and finite(float(value))
+    if check == "string":
+        return isinstance(value, str)
+    return True
+
+
+def _set_path(target, steps, value):
+    """``target.a.b[2] = value`` for steps ``("a", "b", 2)``."""
+    for step in steps[:-1]:
+        target = target[step] if isinstance(step, int) else getattr(target, step)
+    last = steps[-1]
+    if isinstance(last, int):
+        target[last] = value
+    else:
+        setattr(target, last, value)
+
+
+class Supervisor(object):
+    """The state of a robot and its supervisor. Subclassed by the generated module.
+
+    Not thread-safe by itself, so that a tick costs no lock where there is one
+    thread (rclpy's single-threaded executor): where callbacks run on threads of
+    their own (rospy), hold ``lock`` around every call, as the ROS 1 adapter does."""
+
+    ROBOT = ""
+    FIELDS = ()  # (attribute, label, group, start value); group: automata, communications, data, variables
+    EVENTS = ()  # Event objects, in the network's order
+    COMMUNICATIONS = ()  # Communication objects
+
+    def __init_subclass__(cls, **kwargs):
+        super(Supervisor, cls).__init_subclass__(**kwargs)
+        cls.prepare()
+
+    @classmethod
+    def prepare(cls):
+        """Index the tables of a generated class (done once, when the class is made)."""
+        cls.EVENT = dict((e.name, e) for e in cls.EVENTS)
+        cls.CONTROLLABLE = tuple(e.name for e in cls.EVENTS if e.controllable)
+        cls.UNCONTROLLABLE = tuple(e.name for e in cls.EVENTS if not e.controllable)
+        cls.BY_METHOD = dict((e.method, e) for e in cls.EVENTS)
+        cls.REQUESTS = frozenset(e.method for e in cls.EVENTS if e.is_request)
+        cls.COMMUNICATION = dict((c.name, c) for c in cls.COMMUNICATIONS)
+        cls.LABELS = dict((f[0], f[1]) for f in cls.FIELDS)
+
+    def __init__(self, seed=None, warn=None, observer=None):
+        self.lock = threading.RLock()
+        self._random = random.Random(seed).random
+        self.warn = warn if isinstance(warn, Warnings) else Warnings(warn or _stderr)
+        self.observer = observer  # observer(event, controllable, data), called after every event
+        self.reset()
+
+    def reset(self):
+        """Back to the initial state."""
+        for attribute, _label, _group, start in self.FIELDS:
+            setattr(self, attribute, copy.deepcopy(start))
+        self._dirty = True  # the state changed since the allowed events were last computed
+        self._enabled = ()
+        self._sent = {}  # data computed since then, per event
+
+    # ---- the cycle ---------------------------------------------------------------------
+    def tick(self):
+        """One cycle: perform the enabled data events, then one controllable event the
+        supervisor allows. Taking the events in a shuffled order and performing the first
+        allowed one picks each allowed event with equal chance; so does this, drawing once.
+        The allowed events are computed again only after the state changed.
+        Returns the name of the event performed, or None."""
+        if self._dirty:
+            self._provide()
+            self._enabled = self._allowed()
+            self._sent = {}
+            self._dirty = False
+        enabled = self._enabled
+        n = len(enabled)
+        if n == 1:
+            return enabled[0]()
+        if n == 0:
+            return None
+        return enabled[int(self._random() * n)]()
+
+    def settle(self, limit=100):
+        """Supervision layer: after a callback, perform the enabled internal events (data
+        choices, tau transitions, service / action resets and cancels) until none is left.
+        Returns their names."""
+        done = []
+        requests = self.REQUESTS
+        for _ in range(limit):
+            self._provide()
+            internal = [perform for perform in self._allowed() if perform.__name__ not in requests]
+            if not internal:
+                break
+            done.append(internal[0]())
+        self._dirty = True
+        return done
+
+    def allowed(self):
+        """The names of the controllable events the supervisor allows now (after data events)."""
+        self._provide()
+        self._dirty = True
+        return [self.BY_METHOD[perform.__name__].name for perform in self._allowed()]
+
+    def perform(self, name, data=None):
+        """Perform the controllable event ``name`` if the supervisor allows it (True), else
+        nothing (False). ``data`` replaces the provided data (a supervision layer forwards
+        the controller's own message)."""
+        self._provide()
+        self._dirty = True
+        event = self.EVENT.get(name)
+        if event is None or not event.controllable:
+            return False
+        for perform in self._allowed():
+            if perform.__name__ == event.method:
+                return perform(data) is not None
+        return False
+
+    def deliver(self, name, value=None, raw=True):
+        """Deliver the uncontrollable event ``name`` with its data; False (and nothing changes)
+        when the plant cannot take it now. With ``raw`` False, the data of an enum-typed
+        event is already the enum value's name."""
+        event = self.EVENT.get(name)
+        if event is None or event.controllable:
+            raise KeyError("no uncontrollable event %r" % (name,))
+        if raw and event.convert is not None:
+            value = self.convert(event.convert, value)
+        if name not in self.expected():
+            self.warn("ignored %s: not expected now" % (name,), "unexpected " + name)
+            return False
+        getattr(self, event.method)(value)
+        self._dirty = True
+        if self.observer is not None:
+            self._record(name, False, value)
+        return True
+
+    def expected(self):
+        """The uncontrollable events the plant can take now (a response only while waiting, ...)."""
+        return [name for name, possible in zip(self.UNCONTROLLABLE, self._expected()) if possible]
+
+    def convert(self, conversion, value):
+        """An enum value from raw data by the enum's rules; the default on malformed data
+        (a missing field, a short array, a wrong type)."""
+        rules, enum, default = conversion
+        try:
+            return rules(value)
+        except Exception as error:
+            self.warn(
+                "%s: unreadable data (%s: %s); using %s" % (enum, type(error).__name__, error, default),
+                "unreadable " + enum,
+            )
+            return default
+
+    # ---- output: override to put commands on the middleware ---------------------------
+    def send(self, name, data):
+        """The controllable event ``name`` is being performed with ``data`` (None: empty).
+        Return False to refuse it (it is then not performed). The default sends nothing."""
+        return True
+
+    # ---- state -----------------------------------------------------------------------------
+    def snapshot(self):
+        """The whole state as JSON-ready data: {group: {label: value}}."""
+        out = {"automata": {}, "communications": {}, "data": {}, "variables": {}}
+        for attribute, label, group, _start in self.FIELDS:
+            value = getattr(self, attribute)
+            out[group][label] = value if group != "variables" else plain(value)
+        return out
+
+    def to_json(self):
+        return json.dumps(self.snapshot(), sort_keys=True)
+
+    # ---- used by the generated methods -----------------------------------------------------
+    def _record(self, event, controllable, data):
+        observer = self.observer
+        if observer is not None:
+            try:
+                observer(event, controllable, data)
+            except Exception as error:
+                self.warn("observer failed on %s: %s: %s" % (event, type(error).__name__, error), "observer")
+
+    def _choose(self, field, location):
+        """A data plant moves to ``location`` (step 1 of the cycle)."""
+        setattr(self, field, location)
+        self._dirty = True
+        if self.observer is not None:
+            label = self.LABELS[field]
+            self._record(label + (".provide_none" if location == NO_DATA else "." + location), True, None)
+
+    def _provided(self, name, compute):
+        """The data event ``name`` sends, computed by ``compute`` (kept while the state stays
+        the same); REFUSED when it cannot be computed or a number in it is not finite."""
+        if not self._dirty:
+            data = self._sent.get(name)
+            if data is not None:
+                return data
+        try:
+            data = compute()
+        except Exception as error:
+            self.warn(
+                "%s: cannot compute the data (%s: %s); not sent" % (name, type(error).__name__, error),
+                "data " + name,
+            )
+            data = REFUSED
+        if data is not REFUSED and not finite(data):
+            self.warn("%s: the data is not finite (%r); not sent" % (name, plain(data)), "finite " + name)
+            data = REFUSED
+        if not self._dirty:
+            self._sent[name] = data
+        return data
+
+    def _assign(self, *assignments):
+        """Assignments of one transition: each (field, steps, label, compute, check); every
+        value is computed first, then stored. A value that cannot be computed, or is outside
+        the variable's type, leaves the variable as it was (with a warning)."""
+        values = []
+        for field, steps, label, compute, check in assignments:
+            try:
+                value = compute()
+            except Exception as error:
+                self.warn(
+                    "%s: cannot compute the new value (%s: %s); kept" % (label, type(error).__name__, error),
+                    "compute " + label,
+                )
+                value = KEEP
+            values.append(value)
+        for (field, steps, label, _compute, check), value in zip(assignments, values):
+            if value is KEEP:
+                continue
+            if steps:
+                try:
+                    _set_path(getattr(self, field), steps, value)
+                except Exception as error:
+                    self.warn("%s: cannot store (%s: %s); kept" % (label, type(error).__name__, error), "store " + label)
+            elif _fits(check, value):
+                setattr(self, field, value)
+            else:
+                self.warn("%s: %r is outside its type; kept" % (label, plain(value)), "outside " + label)
+
+    def _unchanged(self, value):
+        """An uncontrollable event that changes nothing (a message no transition reads)."""
+
+    # ---- generated per robot ---------------------------------------------------------------
+    def _provide(self):
+        """Step 1: each data plant moves to the data its conditions choose."""
+
+    def _allowed(self):
+        """Step 2: the controllable events the plant and the supervisor allow now."""
+        return ()
+
+    def _expected(self):
+        """For each uncontrollable event (in ``UNCONTROLLABLE`` order): can the plant take it now?"""
+        return ()
+
+
+Supervisor.prepare()

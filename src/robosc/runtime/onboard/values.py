@@ -1,0 +1,110 @@
+# -*- coding: utf-8 -*-
+"""Plain data: what the supervisor sends and receives, as the middleware has it.
+
+``Data`` gives attribute access to dicts and lists (data typed in the simulator),
+``plain`` turns ROS 1 / ROS 2 messages into JSON-ready data, ``finite`` says
+whether every number in some data is finite (no NaN or infinity is ever sent).
+"""
+
+from __future__ import absolute_import
+
+import math
+
+MAX_DEPTH = 16  # deeper data is malformed: a real message nests a few levels
+
+
+class Data(object):
+    """Attribute access to plain data (dicts and lists), e.g. data typed in the simulator."""
+
+    def __init__(self, fields):
+        for key, value in fields.items():
+            setattr(self, str(key), Data.wrap(value))
+
+    @staticmethod
+    def wrap(value, depth=0):
+        if depth > MAX_DEPTH:
+            raise ValueError("data nested more than %d levels" % MAX_DEPTH)
+        if isinstance(value, dict):
+            data = Data({})
+            for key, item in value.items():
+                setattr(data, str(key), Data.wrap(item, depth + 1))
+            return data
+        if isinstance(value, list):
+            return [Data.wrap(item, depth + 1) for item in value]
+        return value
+
+    def __eq__(self, other):
+        return isinstance(other, Data) and vars(self) == vars(other)
+
+    def __ne__(self, other):
+        return not self == other
+
+    __hash__ = None
+
+    def __repr__(self):
+        return "Data(%r)" % (plain(self),)
+
+
+def fields_of(value):
+    """The field names of a ROS 1 or ROS 2 message (empty for anything else)."""
+    fields = getattr(value, "get_fields_and_field_types", None)  # ROS 2
+    if fields is not None:
+        return [name.lstrip("_") for name in fields()]
+    slots = getattr(type(value), "__slots__", None)  # ROS 1 (genpy)
+    if slots and hasattr(value, "_type"):
+        return list(slots)
+    return []
+
+
+def plain(value, depth=0):
+    """``value`` as JSON-ready data: ROS messages (ROS 1 and 2) and Data objects become dicts;
+    a number that is not finite becomes its name ("nan", "inf")."""
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else str(value)
+    if depth > MAX_DEPTH:
+        return "..."
+    if isinstance(value, (list, tuple)) or type(value).__name__ in ("array", "ndarray"):
+        return [plain(item, depth + 1) for item in list(value)]
+    if isinstance(value, dict):
+        return dict((str(k), plain(v, depth + 1)) for k, v in value.items())
+    if isinstance(value, Data):
+        return dict((k, plain(v, depth + 1)) for k, v in vars(value).items())
+    names = fields_of(value)
+    if names:
+        return dict((n, plain(getattr(value, n, None), depth + 1)) for n in names)
+    if isinstance(value, bytes):
+        return list(bytearray(value))
+    return repr(value)
+
+
+def finite(value, depth=0):
+    """Whether every number in ``value`` (plain data, a Data object or a ROS message) is finite."""
+    if value is None or isinstance(value, (bool, int, str, bytes)):
+        return True
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if depth > MAX_DEPTH:
+        return False
+    if isinstance(value, dict):
+        return all(finite(v, depth + 1) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return all(finite(v, depth + 1) for v in value)
+    if type(value).__name__ in ("array", "ndarray"):
+        try:
+            return all(finite(float(v)) for v in list(value)) if _is_float_array(value) else True
+        except (TypeError, ValueError):
+            return True
+    if isinstance(value, Data):
+        return all(finite(v, depth + 1) for v in vars(value).values())
+    names = fields_of(value)
+    return all(finite(getattr(value, n, None), depth + 1) for n in names)
+
+
+def _is_float_array(value):
+    typecode = getattr(value, "typecode", None)  # array.array (ROS 2 sequences of numbers)
+    if typecode is not None:
+        return typecode in ("f", "d")
+    kind = getattr(getattr(value, "dtype", None), "kind", None)  # numpy (ROS 2 fixed arrays)
+    return kind == "f"
