@@ -66,7 +66,9 @@ def robots(draw: st.DrawFn, variables: bool = True, guards: bool = True, adversa
                 target = draw(st.sampled_from([None, *states]))
                 assignment = ""
                 if variables and kind == "response from" and draw(st.booleans()):
-                    assignment = draw(st.sampled_from([f" do {n} := {n} + 1", f" do {n} := 0", f" do {flag} := !{flag}"]))
+                    assignment = draw(
+                        st.sampled_from([f" do {n} := {n} + 1", f" do {n} := 0", f" do {flag} := !{flag}"])
+                    )
                 goto = f" goto {target}" if target else ""
                 lines.append(f"        on {kind} {name}{assignment}{goto}")
             # a way back to the initial state keeps every state able to reach a marked one (rule 3)

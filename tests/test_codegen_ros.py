@@ -108,7 +108,7 @@ def test_ros2_ament_python_package(tmp_path: Path) -> None:
     assert root.find("export/build_type").text == "ament_python"  # type: ignore[union-attr]
     setup = (package / "setup.py").read_text()
     assert "'pick_and_light_robosc_node = pick_and_light_robosc.node:main'" in setup
-    assert "package_name + \".onboard\"" in setup
+    assert 'package_name + ".onboard"' in setup
     assert "script_dir=$base/lib/pick_and_light_robosc" in (package / "setup.cfg").read_text()
     for path in package.rglob("*.py"):
         ast.parse(path.read_text(), feature_version=(3, 8))

@@ -19,8 +19,8 @@ from robosc.language.source import Span
 from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
 from robosc.runtime.onboard import VERSION
 from robosc.runtime.onboard.messages import wire_type
-from robosc.runtime.onboard.supervisor import Communication as OnBoard
 from robosc.runtime.onboard.node import PARAMETERS, controller_side
+from robosc.runtime.onboard.supervisor import Communication as OnBoard
 from robosc.runtime.plan import Communication, Plan
 
 MODES = ("controller", "supervisor")

@@ -511,4 +511,3 @@ def plan(result: SynthesisResult) -> Plan:
     if not result.ok:
         raise ValueError("no supervisor to run: synthesis failed")
     return _Planner(result).build()
-

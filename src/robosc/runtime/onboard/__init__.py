@@ -9,7 +9,7 @@ calls :func:`check_version` first, so a package never runs a runtime it was not
 generated for.
 """
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 VERSION = "0.2.0"
 
@@ -18,7 +18,7 @@ class RuntimeMismatch(ImportError):
     """A generated module meets a runtime of another robosc version."""
 
 
-def check_version(wanted):
+def check_version(wanted: str) -> None:
     """Refuse to run a generated module with a runtime of another version."""
     if wanted != VERSION:
         raise RuntimeMismatch(

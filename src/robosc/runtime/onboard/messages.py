@@ -11,10 +11,11 @@
 * :func:`candidates`: which events a controller's message can be (supervision layer).
 """
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 import importlib
 import math
+from typing import Any, Sequence
 
 from .values import finite
 
@@ -45,7 +46,7 @@ class MissingType(ImportError):
     """A ROS interface package that is not installed."""
 
 
-def wire_type(communication):
+def wire_type(communication: Any) -> tuple[str, str]:
     """``(package, type name)`` of a message communication on the wire."""
     if communication.interface:
         package, _, name = communication.interface.partition("/")
@@ -53,26 +54,28 @@ def wire_type(communication):
     return "std_msgs", STD_MSGS.get(communication.data, "Empty")
 
 
-def load(package, module, name):
+def load(package: str, module: str, name: str) -> Any:
     """The class ``package.module.name`` (e.g. sensor_msgs.msg.LaserScan), or MissingType."""
     try:
         found = getattr(importlib.import_module(package + "." + module), name)
     except (ImportError, AttributeError) as error:
-        raise MissingType("cannot import %s.%s.%s (%s): is the package installed?" % (package, module, name, error))
+        raise MissingType(
+            "cannot import %s.%s.%s (%s): is the package installed?" % (package, module, name, error)
+        ) from None
     return found
 
 
-def field_types(message):
+def field_types(message: Any) -> dict[str, str]:
     """Field name -> ROS type name ("float64", "double", "int16", "geometry_msgs/Vector3", ...)."""
     fields = getattr(message, "get_fields_and_field_types", None)  # ROS 2
     if fields is not None:
-        return dict((name.lstrip("_"), kind) for name, kind in fields().items())
+        return dict((str(name).lstrip("_"), str(kind)) for name, kind in fields().items())
     slots = getattr(message, "__slots__", ())  # ROS 1 (genpy)
     kinds = getattr(message, "_slot_types", ())
     return dict(zip(slots, kinds))
 
 
-def _scalar(kind, value, where):
+def _scalar(kind: str, value: Any, where: str) -> Any:
     """``value`` in the field type ``kind``; Unsendable when it cannot be."""
     if isinstance(value, (dict, list, tuple)):
         raise Unsendable("%s: cannot put %r into a %s" % (where, value, kind))
@@ -108,7 +111,7 @@ def _scalar(kind, value, where):
     return value
 
 
-def fill(message, data, where=""):
+def fill(message: Any, data: Any, where: str = "") -> Any:
     """Copy provided data into ``message`` and return it; fields the model does not set keep
     their defaults. Raises Unsendable for data the message cannot carry."""
     if data is None:
@@ -130,11 +133,11 @@ def fill(message, data, where=""):
         except Unsendable:
             raise
         except Exception as error:  # the message class refused it (ROS 2 checks types and ranges)
-            raise Unsendable("%s: %s" % (place, error))
+            raise Unsendable("%s: %s" % (place, error)) from None
     return message
 
 
-def received(communication, message):
+def received(communication: Any, message: Any) -> Any:
     """The data of a received message as the model sees it: basic data from ``.data``,
     nothing for ``none``, the message itself for objects."""
     if communication.data == "none":
@@ -144,7 +147,7 @@ def received(communication, message):
     return getattr(message, "data", message)
 
 
-def matches(message, signature):
+def matches(message: Any, signature: Any) -> bool:
     """Whether a message carries the constant fields an event's provided data sets
     (``signature`` None: no constant field, any message)."""
     if signature is None:
@@ -167,10 +170,10 @@ def matches(message, signature):
         if not isinstance(actual, (int, float)) or not math.isfinite(float(actual)):
             return False
         return abs(float(actual) - float(signature)) <= TOLERANCE * max(1.0, abs(float(signature)))
-    return actual == signature
+    return bool(actual == signature)
 
 
-def candidates(message, events):
+def candidates(message: Any, events: Sequence[Any]) -> list[Any]:
     """The events a controller's message can be, failing closed: none when a number in it is
     not finite; the event itself when one event alone uses the topic; otherwise those
     whose provided constant data it carries (none, when it carries nobody's)."""

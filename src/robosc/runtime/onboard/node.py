@@ -11,7 +11,7 @@ controller). Names are used as the model gives them: relative ones resolve in
 the node's namespace; the node's own topics (``state``, ``blocked``) are relative.
 """
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 import json
 import math
@@ -19,6 +19,7 @@ import os
 import re
 import sys
 import time
+from typing import Any, Callable, Dict, List, Optional, Union
 
 from .messages import Unsendable, candidates, fill, received, wire_type
 from .recording import EventLog, Recorder, writable
@@ -31,7 +32,7 @@ STATE_TOPIC = "state"
 BLOCKED_TOPIC = "blocked"
 
 
-def default_name(robot_class):
+def default_name(robot_class: Any) -> str:
     """The node's name: ``maze_solver_robosc`` for robot ``MazeSolver``."""
     snake = re.sub(r"(?<=[a-z0-9])(?=[A-Z])", "_", robot_class.ROBOT).lower()
     return re.sub(r"[^a-z0-9_]", "_", snake) + "_robosc"
@@ -40,14 +41,16 @@ def default_name(robot_class):
 class Parameter(object):
     """A node parameter: its default, what it means, and the values it takes."""
 
-    def __init__(self, name, default, description, low=None, high=None):
+    def __init__(
+        self, name: str, default: Any, description: str, low: Optional[float] = None, high: Optional[float] = None
+    ) -> None:
         self.name = name
         self.default = default
         self.description = description
         self.low = low
         self.high = high
 
-    def check(self, value):
+    def check(self, value: Any) -> tuple[Any, Optional[str]]:
         """``(value, None)`` for a good value (an integer is taken for a float), else
         ``(default, why)``."""
         kind = type(self.default)
@@ -64,7 +67,9 @@ class Parameter(object):
 
 
 PARAMETERS = (
-    Parameter("rate", 10.0, "controller cycles per second (a supervision layer only publishes its state)", 0.01, 1000.0),
+    Parameter(
+        "rate", 10.0, "controller cycles per second (a supervision layer only publishes its state)", 0.01, 1000.0
+    ),
     Parameter("seed", -1, "seed of the controller's random choices (-1: different every run)", -1, 2**31 - 1),
     Parameter("event_log", "", "file to append every event to, as JSON Lines (empty: none)"),
     Parameter("event_log_max_bytes", 10000000, "rotate the event log to FILE.1 at this size (0: no bound)", 0, 2**62),
@@ -76,7 +81,7 @@ PARAMETERS = (
 )
 
 
-def controller_side(name):
+def controller_side(name: str) -> str:
     """Where a supervision layer offers ``name`` to the controller: ``/cmd_vel`` ->
     ``/robosc/controller/cmd_vel``, ``cmd_vel`` -> ``robosc/controller/cmd_vel``."""
     if name.startswith("/"):
@@ -89,33 +94,36 @@ def controller_side(name):
 class Topic(object):
     """A topic the node reads (``events`` the robot reports) or writes (commands)."""
 
-    def __init__(self, name, communications, events):
+    def __init__(self, name: str, communications: List[Any], events: List[Any]) -> None:
         self.name = name
         self.communications = communications  # the model's communications on it (one type)
         self.events = events
         self.package, self.type_name = wire_type(communications[0])
-        self.type = None  # the message class, loaded by the adapter
-        self.publisher = None
-        self.forward = None  # supervision layer: the other side of the topic
+        self.type: Any = None  # the message class, loaded by the adapter
+        self.publisher: Any = None
+        self.forward: Any = None  # supervision layer: the other side of the topic
 
 
 class Call(object):
     """A service or action the node calls, with its events."""
 
-    def __init__(self, communication, events):
+    def __init__(self, communication: Any, events: Dict[str, Any]) -> None:
         self.communication = communication
         self.name = communication.ros_name
         self.kind = communication.kind
-        self.package, _, self.type_name = (communication.interface or "/").partition("/")
-        self.trigger = events.get("trigger")
-        self.response = events.get("response")
-        self.error = events.get("error")
-        self.feedback = events.get("feedback")
-        self.cancel = events.get("cancel")
-        self.type = self.request = None  # classes, loaded by the adapter
-        self.client = None
+        interface: str = communication.interface or "/"
+        self.package, _, self.type_name = interface.partition("/")
+        self.trigger: Any = events.get("trigger")  # a service and an action always have these three
+        self.response: Any = events.get("response")
+        self.error: Any = events.get("error")
+        self.feedback: Any = events.get("feedback")  # actions only
+        self.cancel: Any = events.get("cancel")
+        self.type: Any = None  # classes, loaded by the adapter
+        self.request: Any = None
+        self.client: Any = None
+        self.server: Any = None  # supervision layer: what the controller calls
         self.goal = 0  # which goal is current; callbacks of older ones are ignored
-        self.handle = None
+        self.handle: Any = None
 
 
 class NodeCore(object):
@@ -125,14 +133,14 @@ class NodeCore(object):
     ``cancel_goal``. (Attribute names differ from rclpy's Node, which the ROS 2 adapter
     also is.)"""
 
-    def setup(self, robot_class, mode, parameters, log):
+    def setup(self, robot_class: Any, mode: str, parameters: Dict[str, Any], log: Callable[[str, str], None]) -> None:
         """``parameters``: name -> value as given (missing: default); bad values are
         refused with a log line and replaced by the default."""
         if mode not in MODES:
             raise ValueError("mode must be controller or supervisor")
         self.mode = mode
         self.log = log
-        self.params = {}
+        self.params: Dict[str, Any] = {}
         for p in PARAMETERS:
             value, why = p.check(parameters.get(p.name, p.default))
             if why is not None:
@@ -142,8 +150,8 @@ class NodeCore(object):
         self.warnings = Warnings(lambda message: self.log("warning", message))
         self.supervisor = robot_class(seed=seed if seed >= 0 else None, warn=self.warnings)
         self.supervisor.send = self.send
-        self.sinks = []
-        self.event_log = None
+        self.sinks: List[Callable[[Dict[str, Any]], Any]] = []
+        self.event_log: Optional[EventLog] = None
         path = self.params["event_log"]
         if path:
             why = writable(path)
@@ -155,13 +163,16 @@ class NodeCore(object):
         self.blocked_count = self.forwarded_count = 0
         self._plan_routes(robot_class)
 
-    def _plan_routes(self, robot_class):
-        by_comm = {}
+    def _plan_routes(self, robot_class: Any) -> None:
+        by_comm: Dict[str, Dict[str, Any]] = {}
         for event in robot_class.EVENTS:
             if event.communication is not None:
                 by_comm.setdefault(event.communication, {})[event.kind] = event
-        self.inputs, self.outputs, self.service_calls, self.action_calls = {}, {}, [], []
-        self.route = {}  # controllable event name -> Topic or Call that carries it
+        self.inputs: Dict[str, Topic] = {}
+        self.outputs: Dict[str, Topic] = {}
+        self.service_calls: List[Call] = []
+        self.action_calls: List[Call] = []
+        self.route: Dict[str, Union[Topic, Call]] = {}  # controllable event name -> what carries it
         for c in robot_class.COMMUNICATIONS:
             events = by_comm.get(c.name, {})
             if c.kind in ("outgoing", "incoming"):
@@ -181,14 +192,14 @@ class NodeCore(object):
                 if kind in events:
                     self.route[events[kind].name] = call
 
-    def start_recording(self, live_view=None):
+    def start_recording(self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
         """Events go to the event log and the live view (a sink), if any."""
         if live_view is not None:
             self.sinks.append(live_view)
         if self.sinks:
             self.supervisor.observer = Recorder(self.supervisor, self.sinks)
 
-    def open_live_view(self, robot_class):
+    def open_live_view(self, robot_class: Any) -> Any:
         """The live view on 127.0.0.1:``view_port`` (the page generated next to the robot's
         module), or None when it is off or cannot start."""
         port = self.params["view_port"]
@@ -203,15 +214,22 @@ class NodeCore(object):
             with open(page, "rb") as handle:
                 view = LiveView(handle.read(), port=port)
         except (OSError, ValueError) as error:
-            self.log("error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error))
+            self.log(
+                "error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error)
+            )
             return None
-        view.last = {"time": round(time.time(), 6), "event": None, "controllable": False, "data": None,
-                     "state": self.supervisor.snapshot()}
+        view.last = {
+            "time": round(time.time(), 6),
+            "event": None,
+            "controllable": False,
+            "data": None,
+            "state": self.supervisor.snapshot(),
+        }
         self.log("info", "live view on %s" % view.url)
         return view
 
     # ---- the cycle -----------------------------------------------------------------------
-    def cycle(self):
+    def cycle(self) -> None:
         """The timer: a controller's tick, then the state if asked for."""
         if self.mode == "controller":
             try:
@@ -221,17 +239,17 @@ class NodeCore(object):
         if self.params["publish_state"]:
             self.publish_state()
 
-    def after_message(self):
+    def after_message(self) -> None:
         if self.mode == "supervisor":
             self.supervisor.settle()
         elif self.params["tick_on_message"]:
             self.supervisor.tick()
 
-    def publish_state(self):
+    def publish_state(self) -> None:
         self.publish_text(STATE_TOPIC, self.supervisor.to_json())
 
     # ---- data from the robot ---------------------------------------------------------------
-    def receive(self, topic, message):
+    def receive(self, topic: Topic, message: Any) -> None:
         """A message on a topic the robot publishes: each event on it, then what follows."""
         try:
             for event in topic.events:
@@ -241,7 +259,7 @@ class NodeCore(object):
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
 
-    def answer(self, event, value):
+    def answer(self, event: Any, value: Any) -> None:
         """A service's or action's response, error or feedback came back."""
         if event is None:
             return
@@ -252,7 +270,7 @@ class NodeCore(object):
             self.warnings("%s: %s: %s" % (event.name, type(error).__name__, error), "answer " + event.name)
 
     # ---- commands: the supervisor performs a controllable event ----------------------------
-    def send(self, name, data):
+    def send(self, name: str, data: Any) -> bool:
         """Put the controllable event ``name`` on the middleware; False refuses it (not performed)."""
         place = self.route.get(name)
         if place is None:
@@ -280,12 +298,12 @@ class NodeCore(object):
             return self.call_service(place, request)
         return self.start_goal(place, request)
 
-    def forward_call(self, call, event, data):
+    def forward_call(self, call: Call, event: Any, data: Any) -> bool:
         """Supervision layer: a call or goal is forwarded by the adapter's server callback."""
         return True
 
     # ---- supervision layer: commands from the controller ----------------------------------
-    def request(self, topic, message):
+    def request(self, topic: Topic, message: Any) -> bool:
         """The controller published ``message`` on ``topic``: forwarded as the first event it
         matches that the supervisor allows, else blocked and reported. Never forwarded
         as an event it does not match."""
@@ -306,28 +324,34 @@ class NodeCore(object):
             self.blocked(found[0].name, topic.name, "the supervisor does not allow it now", message)
         return False
 
-    def blocked(self, event, where, reason, data=None):
+    def blocked(self, event: Optional[str], where: str, reason: str, data: Any = None) -> None:
         """Report a blocked request on ``blocked`` (JSON) and in the log (rate-limited)."""
         self.blocked_count += 1
         self.warnings("blocked %s on %s: %s" % (event or "a command", where, reason), "blocked %s %s" % (event, where))
-        report = {"event": event, "topic": where, "reason": reason, "data": plain(data), "state": self.supervisor.snapshot()}
+        report = {
+            "event": event,
+            "topic": where,
+            "reason": reason,
+            "data": plain(data),
+            "state": self.supervisor.snapshot(),
+        }
         try:
             self.publish_text(BLOCKED_TOPIC, json.dumps(report, sort_keys=True))
         except Exception as error:
             self.warnings("cannot report a blocked command: %s" % (error,), "blocked report")
 
     # ---- implemented by the adapters -------------------------------------------------------
-    def publish(self, topic, message):
+    def publish(self, topic: Topic, message: Any) -> bool:
         raise NotImplementedError
 
-    def publish_text(self, topic_name, text):
+    def publish_text(self, topic_name: str, text: str) -> None:
         raise NotImplementedError
 
-    def call_service(self, call, request):
+    def call_service(self, call: Call, request: Any) -> bool:
         raise NotImplementedError
 
-    def start_goal(self, call, goal):
+    def start_goal(self, call: Call, goal: Any) -> bool:
         raise NotImplementedError
 
-    def cancel_goal(self, call):
+    def cancel_goal(self, call: Call) -> bool:
         raise NotImplementedError

@@ -2,11 +2,12 @@
 """Where events go besides the supervisor: the event log (JSON Lines, bounded in size)
 and any other sink (the live view), each record with its time, data and the state."""
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 import json
 import os
 import time
+from typing import Any, Callable, Iterable, Optional
 
 from .values import plain
 
@@ -15,12 +16,14 @@ class Recorder(object):
     """An observer for the supervisor: hands each event, with its time, data and the
     resulting state, to every sink. A failing sink is reported, never fatal."""
 
-    def __init__(self, supervisor, sinks, clock=time.time):
+    def __init__(
+        self, supervisor: Any, sinks: Iterable[Callable[[dict[str, Any]], Any]], clock: Callable[[], float] = time.time
+    ) -> None:
         self.supervisor = supervisor
         self.sinks = list(sinks)
         self.clock = clock
 
-    def __call__(self, event, controllable, data):
+    def __call__(self, event: str, controllable: bool, data: Any) -> None:
         record = {
             "time": round(self.clock(), 6),
             "event": event,
@@ -40,14 +43,14 @@ class EventLog(object):
     (0: no bound), it is renamed to ``path.1`` (replacing an older one) and a new file is
     started, so the log never takes more than about twice ``max_bytes``."""
 
-    def __init__(self, path, max_bytes=0):
+    def __init__(self, path: str, max_bytes: int = 0) -> None:
         self.path = path
         self.max_bytes = max_bytes
-        self.handle = open(path, "a")
+        self.handle = open(path, "a")  # noqa: SIM115 (kept open, closed by close())
         self.size = self.handle.tell()
         self.rotations = 0
 
-    def __call__(self, record):
+    def __call__(self, record: dict[str, Any]) -> None:
         line = json.dumps(record, sort_keys=True) + "\n"
         if self.max_bytes and self.size + len(line) > self.max_bytes and self.size > 0:
             self.rotate()
@@ -55,18 +58,18 @@ class EventLog(object):
         self.handle.flush()
         self.size += len(line)
 
-    def rotate(self):
+    def rotate(self) -> None:
         self.handle.close()
         os.replace(self.path, self.path + ".1")
-        self.handle = open(self.path, "a")
+        self.handle = open(self.path, "a")  # noqa: SIM115 (kept open)
         self.size = 0
         self.rotations += 1
 
-    def close(self):
+    def close(self) -> None:
         self.handle.close()
 
 
-def writable(path):
+def writable(path: str) -> Optional[str]:
     """None if ``path`` can be appended to, else why not."""
     try:
         with open(path, "a"):

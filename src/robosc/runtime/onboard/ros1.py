@@ -14,28 +14,26 @@ seconds, on their thread, so the node keeps running meanwhile. Parameters are
 private (``~rate``, ...) and checked: a bad value is refused with a log line.
 """
 
-from __future__ import absolute_import, print_function
+from __future__ import absolute_import, annotations, print_function
 
 import sys
 import threading
-import time
+from typing import Any, Callable, Optional
 
 import rospy
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, NodeCore, controller_side, default_name
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, Topic, controller_side, default_name
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
 
 
-
-
-def _log(level, message):
+def _log(level: str, message: str) -> None:
     {"error": rospy.logerr, "warning": rospy.logwarn}.get(level, rospy.loginfo)(message)
 
 
 class SupervisorNode(NodeCore):
-    def __init__(self, robot_class, mode="controller", node_name=None):
+    def __init__(self, robot_class: Any, mode: str = "controller", node_name: Optional[str] = None) -> None:
         rospy.init_node(node_name or default_name(robot_class))
         given = {}
         for p in PARAMETERS:
@@ -51,7 +49,7 @@ class SupervisorNode(NodeCore):
         self._create()
         self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
 
-    def _load_types(self):
+    def _load_types(self) -> None:
         for topic in list(self.inputs.values()) + list(self.outputs.values()):
             topic.type = load(topic.package, "msg", topic.type_name)
         for call in self.service_calls:
@@ -62,7 +60,7 @@ class SupervisorNode(NodeCore):
             call.request = load(call.package, "msg", call.type_name + "Goal")
         self.text_type = load("std_msgs", "msg", "String")
 
-    def _create(self):
+    def _create(self) -> None:
         depth = self.params["qos_depth"]
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
@@ -84,7 +82,9 @@ class SupervisorNode(NodeCore):
             rospy.Subscriber(topic.name, topic.type, self.locked(self.receive, topic), queue_size=depth)
         if supervising:
             for topic in self.outputs.values():
-                rospy.Subscriber(controller_side(topic.name), topic.type, self.locked(self.request, topic), queue_size=depth)
+                rospy.Subscriber(
+                    controller_side(topic.name), topic.type, self.locked(self.request, topic), queue_size=depth
+                )
             for call in self.service_calls:
                 rospy.Service(controller_side(call.name), call.type, self.serve_call(call))
             for call in self.action_calls:
@@ -93,10 +93,10 @@ class SupervisorNode(NodeCore):
                 )
                 call.server.start()
 
-    def locked(self, function, *first):
+    def locked(self, function: Callable[..., Any], *first: Any) -> Callable[..., Any]:
         """``function(*first, *args)`` holding the lock, never raising into rospy."""
 
-        def run(*args):
+        def run(*args: Any) -> Any:
             try:
                 with self.lock:
                     return function(*(first + args))
@@ -106,32 +106,32 @@ class SupervisorNode(NodeCore):
 
         return run
 
-    def cycle(self, _event=None):
+    def cycle(self, _event: Any = None) -> None:
         NodeCore.cycle(self)
 
-    def receive(self, topic, message):
+    def receive(self, topic: Topic, message: Any) -> None:
         NodeCore.receive(self, topic, message)
         if topic.forward is not None:
             topic.forward.publish(message)
 
-    def publish(self, topic, message):
+    def publish(self, topic: Topic, message: Any) -> bool:
         topic.publisher.publish(message)
         return True
 
-    def publish_text(self, topic_name, text):
+    def publish_text(self, topic_name: str, text: str) -> None:
         publisher = self.text_publishers.get(topic_name)
         if publisher is not None:
             publisher.publish(self.text_type(data=text))
 
     # ---- services and actions of a controller --------------------------------------------------------
-    def call_service(self, call, request):
+    def call_service(self, call: Call, request: Any) -> bool:
         call.goal += 1
         thread = threading.Thread(target=self.call_now, args=(call, call.goal, request))
         thread.daemon = True
         thread.start()
         return True
 
-    def call_now(self, call, number, request):
+    def call_now(self, call: Call, number: int, request: Any) -> None:
         """On a thread: wait for the server, call, and report the answer as an event."""
         response = None
         try:
@@ -145,17 +145,19 @@ class SupervisorNode(NodeCore):
             if number == call.goal:
                 self.answer(call.error if response is None else call.response, response)
 
-    def start_goal(self, call, goal):
+    def start_goal(self, call: Call, goal: Any) -> bool:
         call.goal += 1
         thread = threading.Thread(target=self.send_goal_now, args=(call, call.goal, goal))
         thread.daemon = True
         thread.start()
         return True
 
-    def send_goal_now(self, call, number, goal):
+    def send_goal_now(self, call: Call, number: int, goal: Any) -> None:
         if not call.client.wait_for_server(rospy.Duration(max(self.params["server_timeout"], 0.001))):
-            self.warnings("action %s: no server after %.1f s; failed" % (call.name, self.params["server_timeout"]),
-                          "gone " + call.name)
+            self.warnings(
+                "action %s: no server after %.1f s; failed" % (call.name, self.params["server_timeout"]),
+                "gone " + call.name,
+            )
             with self.lock:
                 if number == call.goal:
                     self.answer(call.error, None)
@@ -169,16 +171,16 @@ class SupervisorNode(NodeCore):
                 feedback_cb=lambda feedback: self.locked(self.feedback, call, number, feedback)(),
             )
 
-    def feedback(self, call, number, feedback):
+    def feedback(self, call: Call, number: int, feedback: Any) -> None:
         if number == call.goal:
             self.answer(call.feedback, feedback)
 
-    def done(self, call, number, status, result):
+    def done(self, call: Call, number: int, status: int, result: Any) -> None:
         if number != call.goal:
             return  # a goal this node cancelled, or an older one
         self.answer(call.response if status == SUCCEEDED else call.error, result if status == SUCCEEDED else None)
 
-    def cancel_goal(self, call):
+    def cancel_goal(self, call: Call) -> bool:
         call.goal += 1  # results of the cancelled goal are ignored
         try:
             call.client.cancel_goal()
@@ -187,8 +189,8 @@ class SupervisorNode(NodeCore):
         return True
 
     # ---- supervision layer: calls and goals from the controller -------------------------------------------
-    def serve_call(self, call):
-        def serve(request):
+    def serve_call(self, call: Call) -> Callable[..., Any]:
+        def serve(request: Any) -> Any:
             """The controller calls the service: forwarded if the supervisor allows it."""
             with self.lock:
                 allowed = self.supervisor.perform(call.trigger.name, request)
@@ -202,15 +204,15 @@ class SupervisorNode(NodeCore):
             except Exception as error:
                 with self.lock:
                     self.answer(call.error, None)
-                raise rospy.ServiceException(str(error))
+                raise rospy.ServiceException(str(error)) from None
             with self.lock:
                 self.answer(call.response, response)
             return response
 
         return serve
 
-    def serve_goal(self, call):
-        def serve(goal):
+    def serve_goal(self, call: Call) -> Callable[..., Any]:
+        def serve(goal: Any) -> None:
             """The controller sends a goal (on the action server's thread): forwarded if the
             supervisor allows it, feedback and result passed back."""
             server = call.server
@@ -246,8 +248,11 @@ class SupervisorNode(NodeCore):
                         if cancelled:
                             self.supervisor.settle()
                         else:
-                            self.blocked(call.cancel.name if call.cancel else None, call.name,
-                                         "the supervisor does not allow it now")
+                            self.blocked(
+                                call.cancel.name if call.cancel else None,
+                                call.name,
+                                "the supervisor does not allow it now",
+                            )
                     if cancelled:
                         client.cancel_goal()
                         server.set_preempted()
@@ -266,21 +271,20 @@ class SupervisorNode(NodeCore):
 
         return serve
 
-    def pass_feedback(self, call, number, feedback):
+    def pass_feedback(self, call: Call, number: int, feedback: Any) -> None:
         with self.lock:
             if number != call.goal:
                 return
             self.answer(call.feedback, feedback)
         call.server.publish_feedback(feedback)
 
-    def forward_call(self, call, event, data):
+    def forward_call(self, call: Call, event: Any, data: Any) -> bool:
         if event.kind == "cancel":  # the forwarding loop cancels the robot's goal
             call.goal += 1
         return True
 
 
-
-def main(robot_class, mode="controller", node_name=None):
+def main(robot_class: Any, mode: str = "controller", node_name: Optional[str] = None) -> int:
     """Run the node until shut down; returns the exit status."""
     try:
         node = SupervisorNode(robot_class, mode, node_name)

@@ -16,34 +16,37 @@ commands are published reliably. Each can be changed per topic with ROS 2's
 supervision layer on a multi-threaded one, every callback holding the supervisor's lock.
 """
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 import sys
 import time
+from typing import Any, Callable, Dict, List, Optional
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor
-from rclpy.action import ActionClient, ActionServer, CancelResponse
+from rclpy.action.client import ActionClient
+from rclpy.action.server import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
+from rclpy.utilities import ok, try_shutdown
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, NodeCore, controller_side, default_name
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, Topic, controller_side, default_name
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
 SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers
 POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
 
 
-
-
 class SupervisorNode(Node, NodeCore):
     """The node of a robot's supervisor (``mode`` controller or supervisor)."""
 
-    def __init__(self, robot_class, mode="controller", node_name=None, **kwargs):
+    def __init__(
+        self, robot_class: Any, mode: str = "controller", node_name: Optional[str] = None, **kwargs: Any
+    ) -> None:
         Node.__init__(self, node_name or default_name(robot_class), **kwargs)
         given = {}
         for p in PARAMETERS:
@@ -51,7 +54,7 @@ class SupervisorNode(Node, NodeCore):
             given[p.name] = self.declare_parameter(p.name, p.default, descriptor).value
         self.setup(robot_class, mode, given, self._log)
         self.lock = self.supervisor.lock
-        self.spent = []  # timers of finished waits, destroyed at the next cycle
+        self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
         self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
         self.start_recording(self.live_view.publish if self.live_view is not None else None)
@@ -59,7 +62,7 @@ class SupervisorNode(Node, NodeCore):
         self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
 
     # ---- set-up ----------------------------------------------------------------------------
-    def _log(self, level, message):
+    def _log(self, level: str, message: str) -> None:
         logger = self.get_logger()  # rclpy wants one severity per line of code that logs
         if level == "error":
             logger.error(message)
@@ -68,7 +71,7 @@ class SupervisorNode(Node, NodeCore):
         else:
             logger.info(message)
 
-    def _load_types(self):
+    def _load_types(self) -> None:
         for topic in list(self.inputs.values()) + list(self.outputs.values()):
             topic.type = load(topic.package, "msg", topic.type_name)
         for call in self.service_calls:
@@ -79,7 +82,7 @@ class SupervisorNode(Node, NodeCore):
             call.request = call.type.Goal
         self.text_type = load("std_msgs", "msg", "String")
 
-    def _create(self):
+    def _create(self) -> None:
         depth = self.params["qos_depth"]
         reliable = QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE)
         best_effort = QoSProfile(depth=depth, reliability=ReliabilityPolicy.BEST_EFFORT)
@@ -120,12 +123,12 @@ class SupervisorNode(Node, NodeCore):
                     callback_group=forwarding,
                 )
 
-    def callback(self, function, *first):
+    def callback(self, function: Callable[..., Any], *first: Any) -> Callable[..., Any]:
         """``function(*first, *args)`` for rclpy: under the lock in a supervision layer (a
         multi-threaded executor), never raising into the executor."""
         locked = self.mode == "supervisor"
 
-        def run(*args):
+        def run(*args: Any) -> Any:
             try:
                 if locked:
                     with self.lock:
@@ -138,40 +141,42 @@ class SupervisorNode(Node, NodeCore):
         return run
 
     # ---- the cycle and data ---------------------------------------------------------------------
-    def cycle(self):
+    def cycle(self) -> None:
         for timer in self.spent:
             self.destroy_timer(timer)
         self.spent = []
         NodeCore.cycle(self)
 
-    def receive(self, topic, message):
+    def receive(self, topic: Topic, message: Any) -> None:
         NodeCore.receive(self, topic, message)
         if topic.forward is not None:
             topic.forward.publish(message)
 
-    def publish(self, topic, message):
+    def publish(self, topic: Topic, message: Any) -> bool:
         topic.publisher.publish(message)
         return True
 
-    def publish_text(self, topic_name, text):
+    def publish_text(self, topic_name: str, text: str) -> None:
         publisher = self.text_publishers.get(topic_name)
         if publisher is not None:
             publisher.publish(self.text_type(data=text))
 
     # ---- services and actions of a controller ------------------------------------------------------
-    def when_ready(self, call, ready, go):
+    def when_ready(self, call: Call, ready: Callable[[], bool], go: Callable[[], None]) -> None:
         """``go()`` once the server is there; the error event after ``server_timeout``
         seconds without it. Never blocks the executor."""
         if ready():
             go()
             return
         timeout = self.params["server_timeout"]
-        self.warnings("%s %s is not available; waiting up to %.1f s" % (call.kind, call.name, timeout), "wait " + call.name)
+        self.warnings(
+            "%s %s is not available; waiting up to %.1f s" % (call.kind, call.name, timeout), "wait " + call.name
+        )
         deadline = time.monotonic() + timeout
         number = call.goal
-        state = {}
+        state: Dict[str, Any] = {}
 
-        def poll():
+        def poll() -> None:
             if number != call.goal:  # cancelled meanwhile
                 state["timer"].cancel()
                 self.spent.append(state["timer"])
@@ -182,23 +187,25 @@ class SupervisorNode(Node, NodeCore):
             elif time.monotonic() >= deadline:
                 state["timer"].cancel()
                 self.spent.append(state["timer"])
-                self.warnings("%s %s: no server after %.1f s; failed" % (call.kind, call.name, timeout), "gone " + call.name)
+                self.warnings(
+                    "%s %s: no server after %.1f s; failed" % (call.kind, call.name, timeout), "gone " + call.name
+                )
                 self.answer(call.error, None)
 
         state["timer"] = self.create_timer(POLL_SECONDS, self.callback(poll))
 
-    def call_service(self, call, request):
+    def call_service(self, call: Call, request: Any) -> bool:
         call.goal += 1
         number = call.goal
 
-        def go():
+        def go() -> None:
             future = call.client.call_async(request)
             future.add_done_callback(self.callback(self.answered, call, number))
 
         self.when_ready(call, call.client.service_is_ready, go)
         return True
 
-    def answered(self, call, number, future):
+    def answered(self, call: Call, number: int, future: Any) -> None:
         if number != call.goal:
             return
         try:
@@ -208,24 +215,22 @@ class SupervisorNode(Node, NodeCore):
             response = None
         self.answer(call.error if response is None else call.response, response)
 
-    def start_goal(self, call, goal):
+    def start_goal(self, call: Call, goal: Any) -> bool:
         call.goal += 1
         number = call.goal
 
-        def go():
-            future = call.client.send_goal_async(
-                goal, feedback_callback=self.callback(self.feedback, call, number)
-            )
+        def go() -> None:
+            future = call.client.send_goal_async(goal, feedback_callback=self.callback(self.feedback, call, number))
             future.add_done_callback(self.callback(self.accepted, call, number))
 
         self.when_ready(call, call.client.server_is_ready, go)
         return True
 
-    def feedback(self, call, number, message):
+    def feedback(self, call: Call, number: int, message: Any) -> None:
         if number == call.goal:
             self.answer(call.feedback, message.feedback)
 
-    def accepted(self, call, number, future):
+    def accepted(self, call: Call, number: int, future: Any) -> None:
         try:
             handle = future.result()
         except Exception as error:
@@ -241,7 +246,7 @@ class SupervisorNode(Node, NodeCore):
         call.handle = handle
         handle.get_result_async().add_done_callback(self.callback(self.done, call, number))
 
-    def done(self, call, number, future):
+    def done(self, call: Call, number: int, future: Any) -> None:
         if number != call.goal:
             return  # a goal this node cancelled, or an older one
         try:
@@ -254,7 +259,7 @@ class SupervisorNode(Node, NodeCore):
         else:
             self.answer(call.error, None)
 
-    def cancel_goal(self, call):
+    def cancel_goal(self, call: Call) -> bool:
         call.goal += 1  # results of the cancelled goal are ignored
         handle, call.handle = call.handle, None
         if handle is not None:
@@ -262,10 +267,10 @@ class SupervisorNode(Node, NodeCore):
         return True
 
     # ---- supervision layer: calls and goals from the controller ---------------------------------------
-    def wait_for(self, future, stop=lambda: False):
+    def wait_for(self, future: Any, stop: Callable[[], bool] = lambda: False) -> Any:
         """The result of a future that other executor threads complete (None if it failed)."""
         while not future.done():
-            if stop() or not rclpy.ok():
+            if stop() or not ok():
                 return None
             time.sleep(0.001)
         try:
@@ -274,8 +279,8 @@ class SupervisorNode(Node, NodeCore):
             self.warnings("call failed: %s" % (error,), "call failed")
             return None
 
-    def serve_call(self, call):
-        def serve(request, response):
+    def serve_call(self, call: Call) -> Callable[..., Any]:
+        def serve(request: Any, response: Any) -> Any:
             """The controller calls the service (on a thread of its own): forwarded if the
             supervisor allows it; a blocked call is answered with an empty response."""
             with self.lock:
@@ -293,8 +298,8 @@ class SupervisorNode(Node, NodeCore):
 
         return serve
 
-    def serve_goal(self, call):
-        def serve(goal_handle):
+    def serve_goal(self, call: Call) -> Callable[..., Any]:
+        def serve(goal_handle: Any) -> Any:
             """The controller sends a goal (on a thread of its own): forwarded if the supervisor
             allows it, feedback and result passed back; a blocked goal is aborted."""
             with self.lock:
@@ -304,7 +309,9 @@ class SupervisorNode(Node, NodeCore):
                     number = call.goal
                     self.supervisor.settle()
                 else:
-                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", goal_handle.request)
+                    self.blocked(
+                        call.trigger.name, call.name, "the supervisor does not allow it now", goal_handle.request
+                    )
             if not allowed:
                 goal_handle.abort()
                 return call.type.Result()
@@ -313,7 +320,9 @@ class SupervisorNode(Node, NodeCore):
                 handle = self.wait_for(
                     call.client.send_goal_async(
                         goal_handle.request,
-                        feedback_callback=lambda message: self.pass_feedback(call, number, message.feedback, goal_handle),
+                        feedback_callback=lambda message: self.pass_feedback(
+                            call, number, message.feedback, goal_handle
+                        ),
                     )
                 )
             if handle is None or not handle.accepted:
@@ -344,40 +353,43 @@ class SupervisorNode(Node, NodeCore):
 
         return serve
 
-    def pass_feedback(self, call, number, feedback, goal_handle):
+    def pass_feedback(self, call: Call, number: int, feedback: Any, goal_handle: Any) -> None:
         with self.lock:
             if number != call.goal:
                 return
             self.answer(call.feedback, feedback)
         goal_handle.publish_feedback(feedback)
 
-    def serve_cancel(self, call):
-        def cancel(goal_handle):
+    def serve_cancel(self, call: Call) -> Callable[[Any], Any]:
+        def cancel(goal_handle: Any) -> Any:
             """The controller cancels its goal: forwarded if the supervisor allows the cancel."""
             with self.lock:
                 if call.cancel is not None and self.supervisor.perform(call.cancel.name):
                     self.supervisor.settle()
                     return CancelResponse.ACCEPT
-                self.blocked(call.cancel.name if call.cancel else None, call.name, "the supervisor does not allow it now")
+                self.blocked(
+                    call.cancel.name if call.cancel else None, call.name, "the supervisor does not allow it now"
+                )
                 return CancelResponse.REJECT
 
         return cancel
 
-    def forward_call(self, call, event, data):
+    def forward_call(self, call: Call, event: Any, data: Any) -> bool:
         if event.kind == "cancel":  # the supervisor itself cancels: the forwarding thread ends the goal
             return self.cancel_goal(call)
         return True
 
 
-
-def main(robot_class, mode="controller", args=None, node_name=None):
+def main(
+    robot_class: Any, mode: str = "controller", args: Optional[List[str]] = None, node_name: Optional[str] = None
+) -> int:
     """Run the node until shut down; returns the exit status."""
     rclpy.init(args=args if args is not None else sys.argv)
     try:
         node = SupervisorNode(robot_class, mode, node_name)
     except MissingType as error:
         print("[robosc] %s" % (error,), file=sys.stderr)
-        rclpy.try_shutdown()
+        try_shutdown()
         return 1
     node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
     executor = MultiThreadedExecutor(num_threads=4) if mode == "supervisor" else SingleThreadedExecutor()
@@ -390,5 +402,5 @@ def main(robot_class, mode="controller", args=None, node_name=None):
         if node.live_view is not None:
             node.live_view.close()
         node.destroy_node()
-        rclpy.try_shutdown()
+        try_shutdown()
     return 0

@@ -18,7 +18,7 @@ prefix, so they can never meet a name of this class (a test checks it).
 Override :meth:`Supervisor.send` to put commands on the middleware.
 """
 
-from __future__ import absolute_import, print_function
+from __future__ import absolute_import, annotations, print_function
 
 import copy
 import json
@@ -26,6 +26,7 @@ import random
 import sys
 import threading
 import time
+from typing import Any, Callable, ClassVar, Dict, FrozenSet, Optional, Tuple
 
 from .values import finite, plain
 
@@ -38,9 +39,18 @@ WARNING_INTERVAL = 5.0  # seconds between two reports of the same kind of warnin
 class Event(object):
     """One event of the network, as the runtime needs it."""
 
-    __slots__ = ("name", "method", "controllable", "kind", "communication", "convert", "signature")
+    __slots__ = ("communication", "controllable", "convert", "kind", "method", "name", "signature")
 
-    def __init__(self, name, method, controllable, kind, communication=None, convert=None, signature=None):
+    def __init__(
+        self,
+        name: str,
+        method: str,
+        controllable: bool,
+        kind: str,
+        communication: Optional[str] = None,
+        convert: Optional[Tuple[Callable[[Any], str], str, str]] = None,
+        signature: Optional[Tuple[Any, ...]] = None,
+    ) -> None:
         self.name = name
         self.method = method  # the generated method performing it
         self.controllable = controllable
@@ -50,27 +60,27 @@ class Event(object):
         self.signature = signature  # alternatives of the constant part of the data it sends
 
     @property
-    def is_request(self):
+    def is_request(self) -> bool:
         """Sent on the controller's behalf: what a supervision layer forwards or blocks."""
         return self.controllable and self.kind in ("message", "trigger")
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Event(%r)" % (self.name,)
 
 
 class Communication(object):
     """A message, service or action, and where it is on ROS."""
 
-    __slots__ = ("name", "kind", "ros_name", "interface", "data")
+    __slots__ = ("data", "interface", "kind", "name", "ros_name")
 
-    def __init__(self, name, kind, ros_name, interface, data):
+    def __init__(self, name: str, kind: str, ros_name: str, interface: Optional[str], data: str) -> None:
         self.name = name
         self.kind = kind  # outgoing, incoming, service, action
         self.ros_name = ros_name  # as the model gives it, e.g. "/scan"
         self.interface = interface  # "package/Type" of a linked interface, or None
         self.data = data  # messages: string, boolean, integer, double, none or object
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Communication(%r)" % (self.name,)
 
 
@@ -78,13 +88,18 @@ class Warnings(object):
     """Reports through ``sink``, each kind of warning at most once per ``interval`` seconds,
     with the number of repeats that were held back meanwhile."""
 
-    def __init__(self, sink, interval=WARNING_INTERVAL, clock=time.monotonic):
+    def __init__(
+        self,
+        sink: Callable[[str], Any],
+        interval: float = WARNING_INTERVAL,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
         self.sink = sink
         self.interval = interval
         self.clock = clock
-        self.last = {}  # kind -> (time of the last report, repeats held back since)
+        self.last: Dict[str, Tuple[float, int]] = {}  # kind -> (time of the last report, repeats held back since)
 
-    def __call__(self, message, kind=None):
+    def __call__(self, message: str, kind: Optional[str] = None) -> bool:
         key = kind if kind is not None else message
         now = self.clock()
         seen = self.last.get(key)
@@ -103,11 +118,11 @@ class Warnings(object):
         return True
 
 
-def _stderr(message):
+def _stderr(message: str) -> None:
     print("[robosc] " + message, file=sys.stderr)
 
 
-def _fits(check, value):
+def _fits(check: Any, value: Any) -> bool:
     """Whether ``value`` is inside a variable's type (``check`` as the generated code gives it)."""
     if check is None:
         return True
@@ -126,7 +141,7 @@ def _fits(check, value):
     return True
 
 
-def _set_path(target, steps, value):
+def _set_path(target: Any, steps: Tuple[Any, ...], value: Any) -> None:
     """``target.a.b[2] = value`` for steps ``("a", "b", 2)``."""
     for step in steps[:-1]:
         target = target[step] if isinstance(step, int) else getattr(target, step)
@@ -144,17 +159,26 @@ class Supervisor(object):
     thread (rclpy's single-threaded executor): where callbacks run on threads of
     their own (rospy), hold ``lock`` around every call, as the ROS 1 adapter does."""
 
-    ROBOT = ""
-    FIELDS = ()  # (attribute, label, group, start value); group: automata, communications, data, variables
-    EVENTS = ()  # Event objects, in the network's order
-    COMMUNICATIONS = ()  # Communication objects
+    ROBOT: ClassVar[str] = ""
+    # (attribute, label, group, start value); group: automata, communications, data, variables
+    FIELDS: ClassVar[Tuple[Tuple[str, str, str, Any], ...]] = ()
+    EVENTS: ClassVar[Tuple[Event, ...]] = ()  # in the network's order
+    COMMUNICATIONS: ClassVar[Tuple[Communication, ...]] = ()
+    # indexes of the tables above, made by prepare()
+    EVENT: ClassVar[Dict[str, Event]]
+    CONTROLLABLE: ClassVar[Tuple[str, ...]]
+    UNCONTROLLABLE: ClassVar[Tuple[str, ...]]
+    BY_METHOD: ClassVar[Dict[str, Event]]
+    REQUESTS: ClassVar[FrozenSet[str]]
+    COMMUNICATION: ClassVar[Dict[str, Communication]]
+    LABELS: ClassVar[Dict[str, str]]
 
-    def __init_subclass__(cls, **kwargs):
+    def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Supervisor, cls).__init_subclass__(**kwargs)
         cls.prepare()
 
     @classmethod
-    def prepare(cls):
+    def prepare(cls) -> None:
         """Index the tables of a generated class (done once, when the class is made)."""
         cls.EVENT = dict((e.name, e) for e in cls.EVENTS)
         cls.CONTROLLABLE = tuple(e.name for e in cls.EVENTS if e.controllable)
@@ -164,23 +188,28 @@ class Supervisor(object):
         cls.COMMUNICATION = dict((c.name, c) for c in cls.COMMUNICATIONS)
         cls.LABELS = dict((f[0], f[1]) for f in cls.FIELDS)
 
-    def __init__(self, seed=None, warn=None, observer=None):
+    def __init__(
+        self,
+        seed: Optional[int] = None,
+        warn: Optional[Callable[[str], Any]] = None,
+        observer: Optional[Callable[[str, bool, Any], Any]] = None,
+    ) -> None:
         self.lock = threading.RLock()
         self._random = random.Random(seed).random
         self.warn = warn if isinstance(warn, Warnings) else Warnings(warn or _stderr)
         self.observer = observer  # observer(event, controllable, data), called after every event
         self.reset()
 
-    def reset(self):
+    def reset(self) -> None:
         """Back to the initial state."""
         for attribute, _label, _group, start in self.FIELDS:
             setattr(self, attribute, copy.deepcopy(start))
         self._dirty = True  # the state changed since the allowed events were last computed
-        self._enabled = ()
-        self._sent = {}  # data computed since then, per event
+        self._enabled: Tuple[Callable[..., Optional[str]], ...] = ()
+        self._sent: Dict[str, Any] = {}  # data computed since then, per event
 
     # ---- the cycle ---------------------------------------------------------------------
-    def tick(self):
+    def tick(self) -> Optional[str]:
         """One cycle: perform the enabled data events, then one controllable event the
         supervisor allows. Taking the events in a shuffled order and performing the first
         allowed one picks each allowed event with equal chance; so does this, drawing once.
@@ -199,28 +228,30 @@ class Supervisor(object):
             return None
         return enabled[int(self._random() * n)]()
 
-    def settle(self, limit=100):
+    def settle(self, limit: int = 100) -> list[str]:
         """Supervision layer: after a callback, perform the enabled internal events (data
         choices, tau transitions, service / action resets and cancels) until none is left.
         Returns their names."""
-        done = []
+        done: list[str] = []
         requests = self.REQUESTS
         for _ in range(limit):
             self._provide()
             internal = [perform for perform in self._allowed() if perform.__name__ not in requests]
             if not internal:
                 break
-            done.append(internal[0]())
+            name = internal[0]()
+            if name is not None:
+                done.append(name)
         self._dirty = True
         return done
 
-    def allowed(self):
+    def allowed(self) -> list[str]:
         """The names of the controllable events the supervisor allows now (after data events)."""
         self._provide()
         self._dirty = True
         return [self.BY_METHOD[perform.__name__].name for perform in self._allowed()]
 
-    def perform(self, name, data=None):
+    def perform(self, name: str, data: Any = None) -> bool:
         """Perform the controllable event ``name`` if the supervisor allows it (True), else
         nothing (False). ``data`` replaces the provided data (a supervision layer forwards
         the controller's own message)."""
@@ -234,7 +265,7 @@ class Supervisor(object):
                 return perform(data) is not None
         return False
 
-    def deliver(self, name, value=None, raw=True):
+    def deliver(self, name: str, value: Any = None, raw: bool = True) -> bool:
         """Deliver the uncontrollable event ``name`` with its data; False (and nothing changes)
         when the plant cannot take it now. With ``raw`` False, the data of an enum-typed
         event is already the enum value's name."""
@@ -252,11 +283,11 @@ class Supervisor(object):
             self._record(name, False, value)
         return True
 
-    def expected(self):
+    def expected(self) -> list[str]:
         """The uncontrollable events the plant can take now (a response only while waiting, ...)."""
         return [name for name, possible in zip(self.UNCONTROLLABLE, self._expected()) if possible]
 
-    def convert(self, conversion, value):
+    def convert(self, conversion: Tuple[Callable[[Any], str], str, str], value: Any) -> str:
         """An enum value from raw data by the enum's rules; the default on malformed data
         (a missing field, a short array, a wrong type)."""
         rules, enum, default = conversion
@@ -270,25 +301,25 @@ class Supervisor(object):
             return default
 
     # ---- output: override to put commands on the middleware ---------------------------
-    def send(self, name, data):
+    def send(self, name: str, data: Any) -> bool:
         """The controllable event ``name`` is being performed with ``data`` (None: empty).
         Return False to refuse it (it is then not performed). The default sends nothing."""
         return True
 
     # ---- state -----------------------------------------------------------------------------
-    def snapshot(self):
+    def snapshot(self) -> Dict[str, Dict[str, Any]]:
         """The whole state as JSON-ready data: {group: {label: value}}."""
-        out = {"automata": {}, "communications": {}, "data": {}, "variables": {}}
+        out: Dict[str, Dict[str, Any]] = {"automata": {}, "communications": {}, "data": {}, "variables": {}}
         for attribute, label, group, _start in self.FIELDS:
             value = getattr(self, attribute)
             out[group][label] = value if group != "variables" else plain(value)
         return out
 
-    def to_json(self):
+    def to_json(self) -> str:
         return json.dumps(self.snapshot(), sort_keys=True)
 
     # ---- used by the generated methods -----------------------------------------------------
-    def _record(self, event, controllable, data):
+    def _record(self, event: str, controllable: bool, data: Any) -> None:
         observer = self.observer
         if observer is not None:
             try:
@@ -296,7 +327,7 @@ class Supervisor(object):
             except Exception as error:
                 self.warn("observer failed on %s: %s: %s" % (event, type(error).__name__, error), "observer")
 
-    def _choose(self, field, location):
+    def _choose(self, field: str, location: str) -> None:
         """A data plant moves to ``location`` (step 1 of the cycle)."""
         setattr(self, field, location)
         self._dirty = True
@@ -304,7 +335,7 @@ class Supervisor(object):
             label = self.LABELS[field]
             self._record(label + (".provide_none" if location == NO_DATA else "." + location), True, None)
 
-    def _provided(self, name, compute):
+    def _provided(self, name: str, compute: Callable[[], Any]) -> Any:
         """The data event ``name`` sends, computed by ``compute`` (kept while the state stays
         the same); REFUSED when it cannot be computed or a number in it is not finite."""
         if not self._dirty:
@@ -326,12 +357,12 @@ class Supervisor(object):
             self._sent[name] = data
         return data
 
-    def _assign(self, *assignments):
+    def _assign(self, *assignments: Tuple[str, Tuple[Any, ...], str, Callable[[], Any], Any]) -> None:
         """Assignments of one transition: each (field, steps, label, compute, check); every
         value is computed first, then stored. A value that cannot be computed, or is outside
         the variable's type, leaves the variable as it was (with a warning)."""
         values = []
-        for field, steps, label, compute, check in assignments:
+        for _field, _steps, label, compute, _check in assignments:
             try:
                 value = compute()
             except Exception as error:
@@ -348,24 +379,26 @@ class Supervisor(object):
                 try:
                     _set_path(getattr(self, field), steps, value)
                 except Exception as error:
-                    self.warn("%s: cannot store (%s: %s); kept" % (label, type(error).__name__, error), "store " + label)
+                    self.warn(
+                        "%s: cannot store (%s: %s); kept" % (label, type(error).__name__, error), "store " + label
+                    )
             elif _fits(check, value):
                 setattr(self, field, value)
             else:
                 self.warn("%s: %r is outside its type; kept" % (label, plain(value)), "outside " + label)
 
-    def _unchanged(self, value):
+    def _unchanged(self, value: Any) -> None:
         """An uncontrollable event that changes nothing (a message no transition reads)."""
 
     # ---- generated per robot ---------------------------------------------------------------
-    def _provide(self):
+    def _provide(self) -> None:
         """Step 1: each data plant moves to the data its conditions choose."""
 
-    def _allowed(self):
+    def _allowed(self) -> Tuple[Callable[..., Optional[str]], ...]:
         """Step 2: the controllable events the plant and the supervisor allow now."""
         return ()
 
-    def _expected(self):
+    def _expected(self) -> Tuple[bool, ...]:
         """For each uncontrollable event (in ``UNCONTROLLABLE`` order): can the plant take it now?"""
         return ()
 

@@ -6,9 +6,10 @@
 whether every number in some data is finite (no NaN or infinity is ever sent).
 """
 
-from __future__ import absolute_import
+from __future__ import absolute_import, annotations
 
 import math
+from typing import Any
 
 MAX_DEPTH = 16  # deeper data is malformed: a real message nests a few levels
 
@@ -16,12 +17,12 @@ MAX_DEPTH = 16  # deeper data is malformed: a real message nests a few levels
 class Data(object):
     """Attribute access to plain data (dicts and lists), e.g. data typed in the simulator."""
 
-    def __init__(self, fields):
+    def __init__(self, fields: dict[Any, Any]) -> None:
         for key, value in fields.items():
             setattr(self, str(key), Data.wrap(value))
 
     @staticmethod
-    def wrap(value, depth=0):
+    def wrap(value: Any, depth: int = 0) -> Any:
         if depth > MAX_DEPTH:
             raise ValueError("data nested more than %d levels" % MAX_DEPTH)
         if isinstance(value, dict):
@@ -33,30 +34,30 @@ class Data(object):
             return [Data.wrap(item, depth + 1) for item in value]
         return value
 
-    def __eq__(self, other):
+    def __eq__(self, other: object) -> bool:
         return isinstance(other, Data) and vars(self) == vars(other)
 
-    def __ne__(self, other):
+    def __ne__(self, other: object) -> bool:
         return not self == other
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Data(%r)" % (plain(self),)
 
 
-def fields_of(value):
+def fields_of(value: Any) -> list[str]:
     """The field names of a ROS 1 or ROS 2 message (empty for anything else)."""
     fields = getattr(value, "get_fields_and_field_types", None)  # ROS 2
     if fields is not None:
-        return [name.lstrip("_") for name in fields()]
+        return [str(name).lstrip("_") for name in fields()]
     slots = getattr(type(value), "__slots__", None)  # ROS 1 (genpy)
     if slots and hasattr(value, "_type"):
         return list(slots)
     return []
 
 
-def plain(value, depth=0):
+def plain(value: Any, depth: int = 0) -> Any:
     """``value`` as JSON-ready data: ROS messages (ROS 1 and 2) and Data objects become dicts;
     a number that is not finite becomes its name ("nan", "inf")."""
     if value is None or isinstance(value, (bool, int, str)):
@@ -79,7 +80,7 @@ def plain(value, depth=0):
     return repr(value)
 
 
-def finite(value, depth=0):
+def finite(value: Any, depth: int = 0) -> bool:
     """Whether every number in ``value`` (plain data, a Data object or a ROS message) is finite."""
     if value is None or isinstance(value, (bool, int, str, bytes)):
         return True
@@ -102,7 +103,7 @@ def finite(value, depth=0):
     return all(finite(getattr(value, n, None), depth + 1) for n in names)
 
 
-def _is_float_array(value):
+def _is_float_array(value: Any) -> bool:
     typecode = getattr(value, "typecode", None)  # array.array (ROS 2 sequences of numbers)
     if typecode is not None:
         return typecode in ("f", "d")
