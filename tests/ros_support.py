@@ -144,10 +144,12 @@ class Ros1:
         if not wait_until(lambda: _port_open(port), 20):
             raise RuntimeError("rosmaster did not start\n" + processes.output())
 
-    def node(self, package: Path, **params: object) -> subprocess.Popen[bytes]:
+    def node(self, package: Path, *remaps: str, **params: object) -> subprocess.Popen[bytes]:
+        """The package's node script, run from its source tree; ``remaps`` like ``__ns:=/robot1``."""
         script = next((package / "scripts").glob("*_node"))
-        args = [f"_{k}:={_ros1_param(v)}" for k, v in params.items()]
-        return self.processes.start(script.name, [ROS1_PYTHON, str(script), *args], self.env)
+        args = [*remaps, *(f"_{k}:={_ros1_param(v)}" for k, v in params.items())]
+        name = script.name + "".join(r.replace("/", "_").replace(":=", "") for r in remaps)
+        return self.processes.start(name, [ROS1_PYTHON, str(script), *args], self.env)
 
     def client(self, body: str, timeout: float = 60) -> Any:
         """Run a client script (rospy, the helpers of ros1_client.py in scope); it prints its

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ros_support import Ros1, build_package
+from ros_support import ROOT, Ros1, build_package
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros1, tmp_path: Path) -> None:
@@ -335,3 +335,85 @@ done({})
     last = state()
     assert last is not None and last["state"]["automata"]["Platform"] == "turning"  # type: ignore[index]
     assert node.poll() is None
+
+
+def test_supervision_layer_fails_closed_on_a_shared_topic(ros1: Ros1, tmp_path: Path) -> None:
+    """The line follower's move and halt share /cmd_vel. With the emergency stop pressed, a
+    controller's command that is neither (5.0, NaN, (-2, 3)) never reaches the robot; halt
+    does; move does not."""
+    package = build_package("examples/line_follower.rscd", 1, "supervisor", tmp_path)
+    node = ros1.node(package, rate=20, publish_state=True)
+    result = ros1.client(
+        """
+start()
+robot = Recorder("/cmd_vel", Twist)
+blocked = Recorder("/blocked", String)
+state = State()
+controller = publisher("/robosc/controller/cmd_vel", Twist)
+stop = publisher("/emergency_stop/stop", Empty)
+stop.publish(Empty())
+assert wait_for(lambda: state.value("EmergencyStop") == "stopped", 5)
+
+def twist(x, z):
+    message = Twist()
+    message.linear.x, message.angular.z = x, z
+    return message
+
+hostile = [twist(5.0, 0.0), twist(float("nan"), 0.0), twist(-2.0, 3.0), twist(0.15, float("inf"))]
+for message in hostile:
+    controller.publish(message)
+    rospy.sleep(0.05)
+assert wait_for(lambda: len(blocked.messages()) >= len(hostile), 5), len(blocked.messages())
+controller.publish(twist(0.15, -0.1))  # move: not while stopped
+assert wait_for(lambda: len(blocked.messages()) > len(hostile), 5)
+reports = [json.loads(b.data) for b in blocked.messages()]
+before_halt = len(robot.messages())
+controller.publish(twist(0.0, 0.0))  # halt: allowed
+assert wait_for(lambda: robot.messages(), 5), "halt was not forwarded"
+rospy.sleep(0.3)
+forwarded = robot.messages()
+done({"events": [r["event"] for r in reports], "reasons": sorted({r["reason"] for r in reports}),
+      "before_halt": before_halt, "forwarded": [[m.linear.x, m.angular.z] for m in forwarded]})
+"""
+    )
+    assert result["events"] == [None, None, None, None, "move"]
+    assert result["reasons"] == [
+        "a number in it is not finite",
+        "matches no event on the topic",
+        "the supervisor does not allow it now",
+    ]
+    assert result["before_halt"] == 0
+    assert result["forwarded"] == [[0.0, 0.0]]
+    assert node.poll() is None
+
+
+def test_two_robots_in_namespaces_on_one_rosmaster(ros1: Ros1, tmp_path: Path) -> None:
+    """One package generated with relative names, two instances (__ns:=/robot1, /robot2),
+    two fake robots: each controller commands only its own robot."""
+    from robosc.api import load_model, plan_supervisor, synthesize_model
+    from robosc.codegen.ros import generate
+
+    result = synthesize_model(load_model(ROOT / "examples/maze_solver.rscd"))
+    package = tmp_path / "maze"
+    generate(plan_supervisor(result), 1, "controller", package, relative=True)
+    nodes = [ros1.node(package, "__ns:=/" + robot, rate=20, publish_state=True) for robot in ("robot1", "robot2")]
+    result = ros1.client(
+        """
+start()
+lefts = {r: Recorder("/%s/rotate_left" % r, Int16) for r in ("robot1", "robot2")}
+moves = {r: Recorder("/%s/cmd_vel" % r, Twist) for r in ("robot1", "robot2")}
+states = {r: Recorder("/%s/state" % r, String) for r in ("robot1", "robot2")}
+scans = {r: publisher("/%s/scan" % r, LaserScan) for r in ("robot1", "robot2")}
+global_moves = Recorder("/cmd_vel", Twist)
+assert wait_for(lambda: all(moves[r].messages() for r in moves), 10), "a robot got no movement"
+scans["robot1"].publish(scan([0.3] + [5.0] * 359))
+scans["robot2"].publish(scan([5.0] * 360))
+assert wait_for(lambda: lefts["robot1"].messages(), 5), "robot1 did not turn at its wall"
+rospy.sleep(0.5)
+platform = {r: json.loads(states[r].messages()[-1].data)["automata"]["Platform"] for r in states}
+done({"robot2_lefts": len(lefts["robot2"].messages()), "platform": platform,
+      "global": len(global_moves.messages())})
+"""
+    )
+    assert result == {"robot2_lefts": 0, "platform": {"robot1": "turning", "robot2": "ready"}, "global": 0}
+    assert all(n.poll() is None for n in nodes)

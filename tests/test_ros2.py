@@ -16,6 +16,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from robosc.api import load_model, plan_supervisor, synthesize_model
 from ros_support import ROOT, Ros2, build_package
 
 
@@ -321,9 +322,13 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
 def test_launch_files_compile(tmp_path: Path) -> None:
     for mode in ("controller", "supervisor"):
         package = build_package("examples/maze_solver.rscd", 2, mode, tmp_path)
-        for launch in (package / "launch").glob("*.launch.py"):
-            compile(launch.read_text(), str(launch), "exec")
-    assert ROOT.exists()
+        launches = list((package / "launch").glob("*.launch.py"))
+        assert len(launches) == 1
+        text = launches[0].read_text()
+        compile(text, str(launches[0]), "exec")
+        assert 'namespace=LaunchConfiguration("namespace")' in text
+        for name in ("rate", "seed", "event_log", "event_log_max_bytes", "qos_depth", "server_timeout"):
+            assert f"({name!r}," in text
 
 
 def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: Path) -> None:
@@ -422,4 +427,134 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
     record = json.loads(turn.removeprefix("data: "))
     assert record["state"]["automata"]["Platform"] == "turning"
     assert record["controllable"] is True and record["data"] == 90
+    assert node.poll() is None
+
+
+def test_supervision_layer_fails_closed_on_a_shared_topic(ros2: Ros2, tmp_path: Path) -> None:
+    """The line follower's move and halt share /cmd_vel. With the emergency stop pressed, a
+    controller's command that is neither (5.0, NaN, (-2, 3)) never reaches the robot; halt
+    does; move does not."""
+    from geometry_msgs.msg import Twist
+    from std_msgs.msg import Empty, String
+
+    package = build_package("examples/line_follower.rscd", 2, "supervisor", tmp_path)
+    node = ros2.start(package, rate=20.0, publish_state=True)
+    robot = ros2.record(Twist, "/cmd_vel")
+    blocked = ros2.record(String, "/blocked")
+    states = ros2.record(String, "/state")
+    controller = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
+    stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
+    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    for publisher in (controller, stop, scan):
+        _wait_subscribed(ros2, publisher)
+    stop.publish(Empty())
+    assert ros2.spin_until(lambda: _state(states).get("EmergencyStop") == "stopped", 5)
+
+    def twist(x: float, z: float) -> Any:
+        message = Twist()
+        message.linear.x, message.angular.z = x, z
+        return message
+
+    hostile = [twist(5.0, 0.0), twist(float("nan"), 0.0), twist(-2.0, 3.0), twist(0.15, float("inf"))]
+    for message in hostile:
+        controller.publish(message)
+    assert ros2.spin_until(lambda: len(blocked) >= len(hostile), 5), f"reported: {len(blocked)}"
+    reports = [json.loads(b.data) for b in blocked]
+    assert all(r["event"] is None for r in reports)
+    assert {r["reason"] for r in reports} == {"matches no event on the topic", "a number in it is not finite"}
+    controller.publish(twist(0.15, -0.1))  # move: not while stopped
+    assert ros2.spin_until(lambda: len(blocked) > len(hostile), 5)
+    assert json.loads(blocked[-1].data)["event"] == "move"
+    assert robot == []
+    controller.publish(twist(0.0, 0.0))  # halt: allowed
+    assert ros2.spin_until(lambda: bool(robot), 5), "halt was not forwarded"
+    assert (robot[0].linear.x, robot[0].angular.z) == (0.0, 0.0)
+    ros2.spin(0.3)
+    assert len(robot) == 1
+    assert node.poll() is None
+
+
+def test_two_robots_in_namespaces_on_one_graph(ros2: Ros2, tmp_path: Path) -> None:
+    """One package generated with relative names, two instances (__ns /robot1, /robot2),
+    two fake robots: each controller commands only its own robot."""
+    from geometry_msgs.msg import Twist
+    from rclpy.qos import qos_profile_sensor_data
+    from sensor_msgs.msg import LaserScan
+    from std_msgs.msg import Int16, String
+
+    from robosc.codegen.ros import generate
+
+    result = synthesize_model(load_model(ROOT / "examples/maze_solver.rscd"))
+    package = tmp_path / "maze"
+    generate(plan_supervisor(result), 2, "controller", package, relative=True)
+    nodes, lefts, moves, scans, states = [], {}, {}, {}, {}
+    for robot in ("robot1", "robot2"):
+        nodes.append(ros2.start(package, "-r", f"__ns:=/{robot}", rate=20.0, publish_state=True))
+        lefts[robot] = ros2.record(Int16, f"/{robot}/rotate_left")
+        moves[robot] = ros2.record(Twist, f"/{robot}/cmd_vel")
+        states[robot] = ros2.record(String, f"/{robot}/state")
+        # a LiDAR driver publishes with the sensor-data profile (best effort)
+        scans[robot] = ros2.node.create_publisher(LaserScan, f"/{robot}/scan", qos_profile_sensor_data)
+    for robot in scans:
+        _wait_subscribed(ros2, scans[robot])
+    assert ros2.spin_until(lambda: all(moves[r] for r in moves), 10), "a robot got no movement"
+
+    def wall_for_robot1() -> bool:
+        scans["robot1"].publish(_scan([0.3] + [5.0] * 359))
+        scans["robot2"].publish(_scan([5.0] * 360))
+        return bool(lefts["robot1"])
+
+    assert ros2.spin_until(wall_for_robot1, 10), "robot1 did not turn at its wall"
+    ros2.spin(0.5)
+    assert lefts["robot2"] == []  # robot2 sees no wall: it never turns
+    assert _state(states["robot1"])["Platform"] == "turning"
+    assert _state(states["robot2"])["Platform"] == "ready"
+    assert ros2.node.count_publishers("/cmd_vel") == 0  # nothing left in the global namespace
+    assert all(n.poll() is None for n in nodes)
+
+
+def test_bad_parameters_are_refused_without_a_traceback(ros2: Ros2, tmp_path: Path) -> None:
+    from std_msgs.msg import String
+
+    package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    node = ros2.start(
+        package,
+        rate=0.0,
+        view_port=70000,
+        qos_depth=-1,
+        server_timeout=float("nan"),
+        event_log=str(tmp_path / "no/such/dir/log.jsonl"),
+        publish_state=True,
+    )
+    states = ros2.record(String, "/state")
+    assert ros2.spin_until(lambda: bool(states), 10), "the node does not run"
+    ros2.processes.stop()
+    log = ros2.processes.output()
+    assert "Traceback" not in log
+    for name in ("rate", "view_port", "qos_depth", "server_timeout", "event_log"):
+        assert f"parameter refused: {name}" in log, name
+    assert node.poll() is not None
+
+
+def test_a_goal_while_the_server_is_absent_never_hangs_the_node(ros2: Ros2, tmp_path: Path) -> None:
+    """No action or service server: after server_timeout the call fails (error event), the
+    node keeps its cycle, and says why in its log."""
+    from geometry_msgs.msg import Pose
+    from std_msgs.msg import String
+
+    package = build_package("examples/pick_and_light.rscd", 2, "controller", tmp_path)
+    node = ros2.start(package, rate=20.0, publish_state=True, server_timeout=1.0)
+    states = ros2.record(String, "/state")
+    seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
+    _wait_subscribed(ros2, seen)
+    seen.publish(Pose())
+    assert ros2.spin_until(lambda: json.loads(states[-1].data)["communications"]["pick"] == "executing" if states else False, 5)
+    started = time.monotonic()
+    # the pick fails once the timeout passes; the supervisor resets and starts it again
+    assert ros2.spin_until(lambda: "action /arm/pick: no server after 1.0 s" in ros2.processes.output(), 5)
+    assert 0.8 < time.monotonic() - started < 3.0
+    count = len(states)
+    ros2.spin(1.0)
+    assert len(states) - count >= 10, "the cycle stopped"  # 20 Hz
+    assert "not available; waiting up to 1.0 s" in ros2.processes.output()
     assert node.poll() is None

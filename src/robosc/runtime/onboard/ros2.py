@@ -394,13 +394,23 @@ def main(
     node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
     executor = MultiThreadedExecutor(num_threads=4) if mode == "supervisor" else SingleThreadedExecutor()
     executor.add_node(node)
+    status = 0
     try:
         executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception as error:  # a shutdown (SIGTERM) can end the wait set under the executor
+        if ok():
+            node.log("error", "the node stopped: %s: %s" % (type(error).__name__, error))
+            status = 1
     finally:
         if node.live_view is not None:
             node.live_view.close()
-        node.destroy_node()
+        if node.event_log is not None:
+            node.event_log.close()
+        try:
+            node.destroy_node()
+        except Exception:  # already gone with its context
+            pass
         try_shutdown()
-    return 0
+    return status

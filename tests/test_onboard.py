@@ -1,0 +1,275 @@
+"""The runtime's node core, messages, recording and warnings, in-process with fake
+middleware: what a generated node does, without ROS."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from robosc.api import load_model, plan_supervisor, synthesize_model
+from robosc.runtime.onboard.messages import Unsendable, candidates, fill, matches, wire_type
+from robosc.runtime.onboard.node import PARAMETERS, NodeCore, controller_side
+from robosc.runtime.onboard.recording import EventLog
+from robosc.runtime.onboard.supervisor import Communication, Warnings
+from robosc.runtime.onboard.values import Data, finite
+from robosc.runtime.simulator import load_module
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+# ---- messages like ROS's: ROS 2 style (get_fields_and_field_types) and ROS 1 style (slots) ----
+class Vector3:
+    def __init__(self) -> None:
+        self.x = self.y = self.z = 0.0
+
+    @staticmethod
+    def get_fields_and_field_types() -> dict[str, str]:
+        return {"x": "double", "y": "double", "z": "double"}
+
+
+class Twist:
+    def __init__(self, x: float = 0.0, z: float = 0.0) -> None:
+        self.linear, self.angular = Vector3(), Vector3()
+        self.linear.x, self.angular.z = x, z
+
+    @staticmethod
+    def get_fields_and_field_types() -> dict[str, str]:
+        return {"linear": "geometry_msgs/Vector3", "angular": "geometry_msgs/Vector3"}
+
+
+class Int16:  # ROS 1 style: slots and slot types
+    __slots__ = ("data",)
+    _slot_types = ("int16",)
+    _type = "std_msgs/Int16"
+
+    def __init__(self) -> None:
+        self.data = 0
+
+
+class Float32:
+    __slots__ = ("data",)
+    _slot_types = ("float32",)
+    _type = "std_msgs/Float32"
+
+    def __init__(self) -> None:
+        self.data = 0.0
+
+
+class FakeNode(NodeCore):
+    """Middleware that records what the node would put on the wire."""
+
+    def __init__(self, model: str, mode: str, **params: Any) -> None:
+        self.published: list[tuple[str, Any]] = []
+        self.texts: list[tuple[str, str]] = []
+        self.logs: list[tuple[str, str]] = []
+        module = load_module(plan_supervisor(synthesize_model(load_model(ROOT / model))))
+        self.setup(module.Robot, mode, params, lambda level, text: self.logs.append((level, text)))
+        self.warnings.interval = 0.0  # every warning, for the tests
+        for topic in list(self.inputs.values()) + list(self.outputs.values()):
+            topic.type = {"Twist": Twist, "Int16": Int16, "Float32": Float32}.get(topic.type_name, Data)
+
+    def publish(self, topic: Any, message: Any) -> bool:
+        self.published.append((topic.name, message))
+        return True
+
+    def publish_text(self, topic_name: str, text: str) -> None:
+        self.texts.append((topic_name, text))
+
+    def blocked_reports(self) -> list[dict[str, Any]]:
+        return [json.loads(text) for name, text in self.texts if name == "blocked"]
+
+
+def line_follower(mode: str, **params: Any) -> FakeNode:
+    node = FakeNode("examples/line_follower.rscd", mode, **params)
+    node.receive(node.inputs["/scan"], Data({"ranges": [5.0] * 360}))
+    return node
+
+
+# ---- supervision layer: fail closed ---------------------------------------------------------
+HOSTILE = [
+    Twist(5.0, 0.0),  # a speed no event sends
+    Twist(float("nan"), 0.0),
+    Twist(0.15, float("nan")),  # move's constant part, but not finite
+    Twist(0.0, float("inf")),
+    Twist(-2.0, 3.0),
+    Data({}),  # no fields at all
+    Data({"linear": "fast"}),
+    None,
+    "move",
+    42,
+]
+
+
+@pytest.mark.parametrize("message", HOSTILE, ids=repr)
+def test_a_message_that_matches_no_event_is_blocked_and_reported(message: Any) -> None:
+    node = line_follower("supervisor")
+    node.receive(node.inputs["/emergency_stop/stop"], None)  # the emergency stop is pressed
+    assert node.request(node.outputs["/cmd_vel"], message) is False
+    assert node.published == []  # nothing reached the robot
+    report = node.blocked_reports()[-1]
+    assert report["topic"] == "/cmd_vel" and report["event"] is None
+    assert report["reason"] in ("matches no event on the topic", "a number in it is not finite")
+    assert node.blocked_count == 1 and node.forwarded_count == 0
+
+
+def test_the_layer_forwards_an_allowed_event_as_itself_and_blocks_a_forbidden_one() -> None:
+    node = line_follower("supervisor")
+    node.receive(node.inputs["/emergency_stop/stop"], None)
+    halt = Twist(0.0, 0.0)
+    assert node.request(node.outputs["/cmd_vel"], halt) is True
+    assert node.published == [("/cmd_vel", halt)]  # the controller's own message
+    move = Twist(0.15, -0.1)
+    assert node.request(node.outputs["/cmd_vel"], move) is False  # stopped: move is not allowed
+    assert node.blocked_reports()[-1]["event"] == "move"
+    assert node.blocked_reports()[-1]["reason"] == "the supervisor does not allow it now"
+    node.receive(node.inputs["/emergency_stop/continue"], None)
+    node.receive(node.inputs["/line/correction"], 10.0)
+    assert node.request(node.outputs["/cmd_vel"], move) is True
+    assert node.published[-1] == ("/cmd_vel", move)
+    assert node.request(node.outputs["/cmd_vel"], halt) is False  # not stopped, line found, safe: no halt
+
+
+def test_candidates_fail_closed() -> None:
+    from robosc.runtime.onboard.supervisor import Event
+
+    move = Event("move", "e0", True, "message", "move", None, ({"linear": {"x": 0.15}},))
+    halt = Event("halt", "e1", True, "message", "halt", None, ({"linear": {"x": 0.0}, "angular": {"z": 0.0}},))
+    free = Event("free", "e2", True, "message", "free", None, (None,))  # computed data only
+    assert candidates(Twist(0.15, 0.3), [move, halt]) == [move]
+    assert candidates(Twist(0.0, 0.0), [move, halt]) == [halt]
+    assert candidates(Twist(0.1500001, 0.0), [move, halt]) == [move]  # float32 on the wire
+    assert candidates(Twist(0.16, 0.0), [move, halt]) == []
+    assert candidates(Twist(0.15, math.nan), [move, halt]) == []
+    assert candidates(Twist(7.0, 0.0), [move]) == [move]  # one event alone on the topic: it is that event
+    assert candidates(Twist(math.inf, 0.0), [move]) == []  # ... but never with a number that is not finite
+    assert candidates(Twist(9.0, 0.0), [move, free]) == [free]
+    assert matches(Float32(), 0.0) and not matches(Float32(), 1.0)
+    assert not matches(True, 1) and not matches(1, True)  # booleans are not numbers
+    deep: Any = Data({})
+    for _ in range(100):
+        deep = Data({"inner": deep})
+    assert not finite(deep)  # too deep to be a message: refused, not a RecursionError
+
+
+# ---- controller: what goes on the wire -----------------------------------------------------
+def test_the_controller_never_publishes_what_its_message_cannot_carry() -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller")
+    assert node.send("turn_left", 90) is True
+    assert node.published[-1][0] == "/rotate_left" and node.published[-1][1].data == 90
+    assert node.send("turn_left", 40000) is False  # outside Int16
+    assert node.send("turn_left", 1.5) is False
+    assert node.send("turn_left", True) is False
+    assert node.send("movement", {"linear": {"x": float("nan")}}) is False
+    assert node.send("movement", {"linear": {"w": 1.0}}) is False  # no such field
+    assert len(node.published) == 1
+    assert any("outside int16" in text for _, text in node.logs)
+
+
+def test_fill_checks_ranges_and_types() -> None:
+    assert fill(Float32(), 0.5).data == 0.5
+    with pytest.raises(Unsendable, match="outside float32"):
+        fill(Float32(), 1e39)
+    with pytest.raises(Unsendable, match="not finite"):
+        fill(Float32(), math.inf)
+    message = fill(Twist(), {"linear": {"x": 1}, "angular": {"z": -0.5}})
+    assert (message.linear.x, message.angular.z) == (1.0, -0.5) and type(message.linear.x) is float
+
+
+def test_wire_types_follow_the_original_unless_an_interface_is_linked() -> None:
+    def comm(data: str, interface: str | None = None) -> Communication:
+        return Communication("c", "incoming", "/c", interface, data)
+
+    assert wire_type(comm("double")) == ("std_msgs", "Float32")
+    assert wire_type(comm("integer")) == ("std_msgs", "Int16")
+    assert wire_type(comm("boolean")) == ("std_msgs", "Bool")
+    assert wire_type(comm("string")) == ("std_msgs", "String")
+    assert wire_type(comm("none")) == ("std_msgs", "Empty")
+    assert wire_type(comm("double", "std_msgs/Float64")) == ("std_msgs", "Float64")
+
+
+def test_tick_on_message_runs_a_cycle_after_each_message() -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
+    node.receive(node.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))
+    assert [name for name, _ in node.published] == ["/rotate_left"]  # no timer needed
+    node.receive(node.inputs["/rotate_done"], None)
+    assert node.published[-1][0] == "/rotate_left"  # ready again, the wall still in front
+    quiet = FakeNode("examples/maze_solver.rscd", "controller")
+    quiet.receive(quiet.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))
+    assert quiet.published == []  # default: commands come with the timer's cycle
+    quiet.cycle()
+    assert [name for name, _ in quiet.published] == ["/rotate_left"]
+
+
+def test_a_malformed_message_never_stops_the_node() -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
+    for bad in (None, 42, Data({"ranges": "x"}), Data({"ranges": [math.nan] * 360}), object()):
+        node.receive(node.inputs["/scan"], bad)
+    assert not [name for name, _ in node.published if name == "/rotate_left"]
+
+
+# ---- parameters -------------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    ("name", "value"),
+    [("rate", 0.0), ("rate", float("nan")), ("rate", -5.0), ("rate", "fast"), ("view_port", 70000),
+     ("seed", -7), ("qos_depth", 0), ("server_timeout", float("inf")), ("publish_state", "yes")],
+)
+def test_a_bad_parameter_is_refused_with_a_log_line(name: str, value: Any) -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", **{name: value})
+    default = next(p.default for p in PARAMETERS if p.name == name)
+    assert node.params[name] == default
+    assert [level for level, text in node.logs if name in text] == ["error"]
+
+
+def test_good_parameters_are_taken() -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", rate=20, seed=3, qos_depth=5)
+    assert node.params["rate"] == 20.0 and type(node.params["rate"]) is float
+    assert (node.params["seed"], node.params["qos_depth"]) == (3, 5)
+    assert node.logs == []
+
+
+def test_an_unwritable_event_log_is_refused(tmp_path: Path) -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", event_log=str(tmp_path / "missing/dir/log.jsonl"))
+    assert node.event_log is None and node.logs[0][0] == "error"
+
+
+def test_names_of_a_supervision_layer() -> None:
+    assert controller_side("/cmd_vel") == "/robosc/controller/cmd_vel"
+    assert controller_side("cmd_vel") == "robosc/controller/cmd_vel"  # relative stays relative
+
+
+# ---- bounded: the event log and the warnings ---------------------------------------------------
+def test_event_log_rotates_at_its_size(tmp_path: Path) -> None:
+    path = tmp_path / "events.jsonl"
+    node = FakeNode(
+        "examples/maze_solver.rscd", "controller", event_log=str(path), event_log_max_bytes=4000, tick_on_message=True
+    )
+    node.start_recording()
+    for i in range(300):
+        node.receive(node.inputs["/scan"], Data({"ranges": [0.3 if i % 2 else 5.0] + [5.0] * 359}))
+        node.receive(node.inputs["/rotate_done"], None)
+    assert node.event_log is not None and node.event_log.rotations > 3
+    assert path.stat().st_size <= 4000 and (tmp_path / "events.jsonl.1").stat().st_size <= 4000
+    assert not (tmp_path / "events.jsonl.2").exists()
+    lines = path.read_text().splitlines()
+    assert lines and all(json.loads(line)["state"] for line in lines)  # whole records only
+    unbounded = EventLog(str(tmp_path / "all.jsonl"), 0)
+    for _ in range(100):
+        unbounded({"event": "x" * 100})
+    assert unbounded.rotations == 0
+
+
+def test_warnings_are_rate_limited() -> None:
+    now = [0.0]
+    out: list[str] = []
+    warn = Warnings(out.append, interval=5.0, clock=lambda: now[0])
+    for _ in range(1000):
+        warn("scan: unreadable", "scan")
+    assert out == ["scan: unreadable"]
+    warn("other", "other")
+    now[0] = 6.0
+    warn("scan: unreadable", "scan")
+    assert out == ["scan: unreadable", "other", "scan: unreadable (and 999 more like it)"]
