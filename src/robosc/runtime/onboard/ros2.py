@@ -18,6 +18,7 @@ supervision layer on a multi-threaded one, every callback holding the supervisor
 
 from __future__ import absolute_import, annotations
 
+import contextlib
 import sys
 import time
 from typing import Any, Callable, Dict, List, Optional
@@ -408,9 +409,7 @@ def main(
             node.live_view.close()
         if node.event_log is not None:
             node.event_log.close()
-        try:
+        with contextlib.suppress(Exception):  # already gone with its context
             node.destroy_node()
-        except Exception:  # already gone with its context
-            pass
         try_shutdown()
     return status
