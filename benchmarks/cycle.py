@@ -12,7 +12,11 @@
    robot. Measured with ``tick_on_message`` (a cycle right after each message)
    and, for comparison, with the default 10 Hz timer only.
 
-    python benchmarks/cycle.py [--samples 300] [--skip-ros] [--write docs/performance.md]
+    python benchmarks/cycle.py [--samples 300] [--skip-ros] [--baseline REV] [--write docs/performance.md]
+
+With ``--baseline REV`` (e.g. ``f1df180``, before the runtime was split out of the
+generated code) the ticks of that revision's generated modules are measured in the
+same run, alternating with today's.
 """
 
 from __future__ import annotations
@@ -35,10 +39,57 @@ ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
 
 
 def load(name: str) -> Any:
+    """The generated module of an example (this robosc), loaded on this robosc's runtime."""
     from robosc.api import load_model, plan_supervisor, synthesize_model
     from robosc.runtime.simulator import load_module
 
     return load_module(plan_supervisor(synthesize_model(load_model(ROOT / "examples" / f"{name}.rscd"))))
+
+
+def load_baseline(revision: str, name: str, work: Path) -> Any:
+    """The generated module of an example as robosc ``revision`` wrote it (before the runtime
+    was split out, the module was stand-alone: it loads next to today's in one process)."""
+    import importlib.util
+
+    tree = work / f"robosc-{revision}"
+    if not tree.exists():
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True)
+        tree.mkdir(parents=True)
+        subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
+    code = (
+        "import sys; from robosc.api import load_model, supervisor_module, synthesize_model; "
+        f"sys.stdout.write(supervisor_module(synthesize_model(load_model({str(ROOT / 'examples' / (name + '.rscd'))!r}))))"
+    )
+    text = subprocess.run(
+        [sys.executable, "-c", code],
+        env={**os.environ, "PYTHONPATH": str(tree / "src")},
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    path = work / f"baseline_{name}.py"
+    path.write_text(text)
+    spec = importlib.util.spec_from_file_location(f"baseline_{name}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class Flavour:
+    """How a benchmark case drives one generation of the generated code."""
+
+    def __init__(self, label: str, module: Any, old: bool) -> None:
+        self.label, self.module, self.old = label, module, old
+
+    def robot(self) -> Any:
+        return self.module.Supervisor(seed=1) if self.old else self.module.Robot(seed=1)
+
+    def deliver(self, sup: Any, event: str, value: Any = None) -> None:
+        if self.old:
+            getattr(sup, f"on_{event}")(value)
+        else:
+            sup.deliver(event, value)
 
 
 def summary(samples_ns: list[int]) -> dict[str, float]:
@@ -53,17 +104,16 @@ def summary(samples_ns: list[int]) -> dict[str, float]:
     }
 
 
-def timed_ticks(sup: Any, before: Callable[[int], None] | None, runs: int = 3, ticks: int = 1000) -> list[int]:
+def timed_ticks(sup: Any, before: Callable[[int], None] | None, ticks: int = 1000) -> list[int]:
     clock = time.perf_counter_ns
     tick = sup.tick
     samples: list[int] = []
-    for _ in range(runs):
-        for i in range(ticks):
-            if before is not None:
-                before(i)
-            start = clock()
-            tick()
-            samples.append(clock() - start)
+    for i in range(ticks):
+        if before is not None:
+            before(i)
+        start = clock()
+        tick()
+        samples.append(clock() - start)
     return samples
 
 
@@ -85,57 +135,76 @@ def batch_tick_us(sup: Any, n: int = 200_000) -> float:
     return (time.perf_counter() - start) / n * 1e6
 
 
-def tick_benchmarks() -> list[dict[str, Any]]:
-    rows = []
-    maze = load("maze_solver")
-    sup = maze.Supervisor(seed=1)
-    rows.append(
-        {"example": "maze_solver", "case": "steady", **summary(timed_ticks(sup, None)), "batch": batch_tick_us(sup)}
-    )
-    walls = [maze.Data({"ranges": [0.3] + [5.0] * 359}), maze.Data({"ranges": [5.0] * 360})]
-    sup = maze.Supervisor(seed=1)
+def cases(f: Flavour, maze: Any, lf: Any) -> dict[str, tuple[Any, Callable[[int], None] | None]]:
+    """Each case: a supervisor and what happens before each timed tick."""
+    from robosc.runtime.onboard.values import Data
+
+    out: dict[str, tuple[Any, Callable[[int], None] | None]] = {}
+    m = Flavour(f.label, maze, f.old)
+    sup = m.robot()
+    out["maze_solver, steady"] = (sup, None)
+    walls = [Data({"ranges": [0.3] + [5.0] * 359}), Data({"ranges": [5.0] * 360})]
+    sup2 = m.robot()
 
     def maze_message(i: int) -> None:  # a scan that changes what is in front, and the turn finished
-        sup.on_rotate_done()
-        sup.on_scan_front(walls[i % 2])
+        m.deliver(sup2, "rotate_done")
+        m.deliver(sup2, "scan_front", walls[i % 2])
 
-    rows.append({"example": "maze_solver", "case": "after a message", **summary(timed_ticks(sup, maze_message))})
-    lf = load("line_follower")
-    sup = lf.Supervisor(seed=1)
-    sup.on_correction(10.0)
-    sup.on_scan(lf.Data({"ranges": [5.0] * 360}))
-    rows.append(
-        {"example": "line_follower", "case": "steady", **summary(timed_ticks(sup, None)), "batch": batch_tick_us(sup)}
-    )
-    sup2 = lf.Supervisor(seed=1)
-    sup2.on_scan(lf.Data({"ranges": [5.0] * 360}))
+    out["maze_solver, after a message"] = (sup2, maze_message)
+    line = Flavour(f.label, lf, f.old)
+    sup3 = line.robot()
+    line.deliver(sup3, "correction", 10.0)
+    line.deliver(sup3, "scan", Data({"ranges": [5.0] * 360}))
+    out["line_follower, steady"] = (sup3, None)
+    sup4 = line.robot()
+    line.deliver(sup4, "scan", Data({"ranges": [5.0] * 360}))
 
     def lf_message(i: int) -> None:  # a new line correction every cycle
-        sup2.on_correction(float(i % 7))
+        line.deliver(sup4, "correction", float(i % 7))
 
-    rows.append({"example": "line_follower", "case": "after a message", **summary(timed_ticks(sup2, lf_message))})
-    # the ROS 1 node holds its lock around each tick (rospy runs callbacks on threads)
-    sup3 = maze.Supervisor(seed=1)
-    lock = sup3.lock
+    out["line_follower, after a message"] = (sup4, lf_message)
+    sup5 = m.robot()
+    lock = sup5.lock
 
     class Locked:
         def tick(self) -> None:
             with lock:
-                sup3.tick()
+                sup5.tick()
 
-    rows.append(
-        {"example": "maze_solver", "case": "steady, with the ROS 1 node's lock", **summary(timed_ticks(Locked(), None))}
-    )
-    return rows
+    out["maze_solver, steady, with the ROS 1 node's lock"] = (Locked(), None)
+    return out
+
+
+def tick_benchmarks(baseline: str | None, work: Path) -> list[dict[str, Any]]:
+    """Each case 3 x 1000 ticks per flavour; with a baseline, the two flavours alternate
+    run by run, so that the machine's changing speed hits both alike."""
+    flavours = [(Flavour("now", None, False), load("maze_solver"), load("line_follower"))]
+    if baseline:
+        old = Flavour(baseline, None, True)
+        flavours.append((old, load_baseline(baseline, "maze_solver", work), load_baseline(baseline, "line_follower", work)))
+    prepared = [(f, cases(f, maze, lf)) for f, maze, lf in flavours]
+    samples: dict[tuple[str, str], list[int]] = {}
+    for _ in range(3):
+        for f, table in prepared:
+            for case, (sup, before) in table.items():
+                samples.setdefault((case, f.label), []).extend(timed_ticks(sup, before))
+    rows = []
+    for f, table in prepared:
+        for case, (sup, before) in table.items():
+            row = {"case": case, "version": f.label, **summary(samples[(case, f.label)])}
+            if before is None and "lock" not in case:
+                row["batch"] = batch_tick_us(sup)
+            rows.append(row)
+    return sorted(rows, key=lambda r: (list(prepared[0][1]).index(r["case"]), r["version"] != "now"))
 
 
 # ---- message in, command out, on real ROS ---------------------------------------------------
 
-# (example, topic in, receive method, publisher attribute, output check, robot script)
+# what makes a message a trigger and a command a response to it, per example
 SCENARIOS = {
     "maze_solver": {
-        "receive": "receive_scan",
-        "publisher": "pub_rotate_left",
+        "topic_in": "/scan",
+        "topic_out": "/rotate_left",
         "is_trigger": "lambda m: len(m.ranges) > 0 and m.ranges[0] < 0.6",  # a wall in front
         "is_command": "lambda m: True",
         "setup": [],
@@ -144,56 +213,56 @@ SCENARIOS = {
         "trigger": [("/scan", "LaserScan", [0.3] + [5.0] * 359)],
     },
     "line_follower": {
-        "receive": "receive_scan",
-        "publisher": "pub_cmd_vel",
+        "topic_in": "/scan",
+        "topic_out": "/cmd_vel",
         "is_trigger": "lambda m: len(m.ranges) > 0 and m.ranges[0] > 0.4",  # safe again
         "is_command": "lambda m: m.linear.x > 0.1",  # move, not halt
-        "setup": [("/line/correction", "Float64", 5.0)],
+        "setup": [("/line/correction", "Float32", 5.0)],
         "reset": [("/scan", "LaserScan", [0.2] + [5.0] * 359)],
         "trigger": [("/scan", "LaserScan", [5.0] * 360)],
     },
 }
 
+# Runs the generated node with the runtime's receive and publish wrapped: the time from a
+# trigger message entering the node to the command's publish() returning.
 NODE_DRIVER = """
 import json, sys, time
 sys.path.insert(0, {path!r})
 {ros_setup}
-import {module} as generated
+from {package}.onboard import {adapter} as adapter
+from {package}.{module} import Robot
 scenario = json.loads({scenario!r})
 is_command = eval(scenario["is_command"])
 is_trigger = eval(scenario["is_trigger"])
 latencies, pending = [], [None]
-original_receive = getattr(generated.Node, scenario["receive"])
+receive, publish = adapter.SupervisorNode.receive, adapter.SupervisorNode.publish
 
-def receive(self, message):
-    if is_trigger(message):
+def timed_receive(self, topic, message):
+    if topic.name == scenario["topic_in"] and is_trigger(message):
         pending[0] = time.perf_counter()
-    original_receive(self, message)
+    receive(self, topic, message)
 
-setattr(generated.Node, scenario["receive"], receive)
-node = generated.Node({node_args})
-publisher = getattr(node, scenario["publisher"])
-original_publish = publisher.publish
-
-def publish(message, *rest):
-    original_publish(message, *rest)
-    if pending[0] is not None and is_command(message):
+def timed_publish(self, topic, message):
+    done = publish(self, topic, message)
+    if pending[0] is not None and topic.name == scenario["topic_out"] and is_command(message):
         latencies.append(time.perf_counter() - pending[0])
         pending[0] = None
         if len(latencies) >= {samples}:
             with open({out!r}, "w") as handle:
                 json.dump(latencies, handle)
             {stop}
+    return done
 
-publisher.publish = publish
-{spin}
+adapter.SupervisorNode.receive = timed_receive
+adapter.SupervisorNode.publish = timed_publish
+{run}
 """
 
 ROBOT_ROS1 = """
 import json, sys, time
 import rospy
 from sensor_msgs.msg import LaserScan
-from std_msgs.msg import Empty, Float64
+from std_msgs.msg import Empty, Float32
 scenario = json.loads(sys.argv[1])
 rospy.init_node("robot", anonymous=True)
 pubs = {{}}
@@ -227,7 +296,7 @@ ROBOT_ROS2 = """
 import json, sys, time
 import rclpy
 from sensor_msgs.msg import LaserScan
-from std_msgs.msg import Empty, Float64
+from std_msgs.msg import Empty, Float32
 scenario = json.loads(sys.argv[1])
 rclpy.init()
 node = rclpy.create_node("robot")
@@ -260,6 +329,12 @@ while True:
 """
 
 
+def _plan(example: str) -> Any:
+    from robosc.api import load_model, plan_supervisor, synthesize_model
+
+    return plan_supervisor(synthesize_model(load_model(ROOT / "examples" / f"{example}.rscd")))
+
+
 def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, work: Path) -> dict[str, Any] | None:
     from ros_support import build_package, free_port, wait_until
 
@@ -286,22 +361,20 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
             )
             time.sleep(1.5)
             python = ROS1_PYTHON
-            scripts = package / "scripts"
-            module = next(scripts.glob("*_node.py")).stem
             args = [
                 "__name:=bench",
                 f"_tick_on_message:={'true' if tick_on_message else 'false'}",
                 "_rate:=10.0",
                 "_seed:=1",
             ]
-            path, setup = scripts, f"sys.argv[1:] = {args!r}\nimport rospy"
-            stop, spin = 'rospy.signal_shutdown("done")', "rospy.spin()"
+            path, adapter = package / "src", "ros1"
+            setup = f"sys.argv[1:] = {args!r}"
+            stop, run = 'import rospy; rospy.signal_shutdown("done")', 'adapter.main(Robot, "controller", "bench")'
             robot = ROBOT_ROS1.format(gap=gap)
         else:
             domain = 150 + (os.getpid() % 50)
             env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(domain)}
             python = sys.executable
-            module = next(p.name for p in package.iterdir() if (p / "node.py").exists()) + ".node"
             params = [
                 "--ros-args",
                 "-p",
@@ -311,19 +384,24 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
                 "-p",
                 "seed:=1",
             ]
-            path, setup = package, f"import rclpy\nrclpy.init(args=['bench', *{params!r}])"
-            stop, spin = "raise SystemExit(0)", "rclpy.spin(node.node)"
+            path, adapter, setup = package, "ros2", ""
+            stop, run = "raise SystemExit(0)", f'adapter.main(Robot, "controller", ["bench", *{params!r}])'
             robot = ROBOT_ROS2.format(gap=gap)
+        from robosc.codegen.ros import package_name
+        from robosc.runtime.module import module_name
+
+        plan = _plan(example)
         driver = NODE_DRIVER.format(
             path=str(path),
             ros_setup=setup,
-            module=module,
+            package=package_name(plan),
+            module=module_name(plan),
+            adapter=adapter,
             scenario=json.dumps(scenario),
-            node_args="",
             samples=samples,
             out=str(out),
             stop=stop,
-            spin=spin,
+            run=run,
         )
         processes.append(subprocess.Popen([python, "-c", driver], env=env, stdout=logs, stderr=logs))
         time.sleep(2.0)
@@ -370,14 +448,21 @@ def report(ticks: list[dict[str, Any]], overhead: float, latencies: list[dict[st
         f"3 x 1000 ticks per row, each timed with `perf_counter_ns` (one reading costs {overhead:.3f} µs, included in each sample); "
         "`batch`: 200,000 ticks timed together, per tick. Microseconds.",
         "",
-        "| example | case | avg | min | max | std dev | median | batch |",
+        "| case | version | avg | min | max | std dev | median | batch |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for r in ticks:
         batch = fmt(r["batch"]) if "batch" in r else "-"
         lines.append(
-            f"| {r['example']} | {r['case']} | {fmt(r['avg'])} | {fmt(r['min'])} | {fmt(r['max'])} | {fmt(r['std'])} | {fmt(r['median'])} | {batch} |"
+            f"| {r['case']} | {r['version']} | {fmt(r['avg'])} | {fmt(r['min'])} | {fmt(r['max'])} | {fmt(r['std'])} | {fmt(r['median'])} | {batch} |"
         )
+    medians = {(r["case"], r["version"]): r["median"] for r in ticks}
+    versions = sorted({r["version"] for r in ticks} - {"now"})
+    for version in versions:
+        lines += ["", f"Median now / median {version}:"]
+        for case in dict.fromkeys(r["case"] for r in ticks):
+            if (case, version) in medians:
+                lines.append(f"- {case}: {medians[(case, 'now')] / medians[(case, version)]:.2f}")
     lines += [
         "",
         "### Message in to command out on real ROS (`benchmarks/cycle.py`)",
@@ -404,9 +489,11 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=300)
     parser.add_argument("--skip-ros", action="store_true")
     parser.add_argument("--write", type=Path, help="replace the cycle section of this markdown file")
+    parser.add_argument("--baseline", help="a git revision whose generated code runs side by side (e.g. f1df180)")
     args = parser.parse_args()
     overhead = timer_overhead()
-    ticks = tick_benchmarks()
+    with tempfile.TemporaryDirectory() as tmp:
+        ticks = tick_benchmarks(args.baseline, Path(tmp))
     latencies: list[dict[str, Any]] = []
     if not args.skip_ros:
         with tempfile.TemporaryDirectory() as tmp:

@@ -78,7 +78,7 @@ class EventPlan:
     effect: tuple[str, ...]  # Python lines (indented relative to the method body)
     communication: Communication | None = None
     convert: str | None = None  # Python: (rules function, enum name, default) for enum data
-    data: str | None = None  # Python expression for the data to send when none is given
+    data: str | None = None  # constant data: Python expression for it; computed data: the method computing it
     computed: bool = False  # ``data`` is computed from the state (it may be refused)
     signature: str | None = None  # Python literal: alternatives of the constant part of the data
 
@@ -115,6 +115,7 @@ class DataChoice:
     enabled: str  # Python condition (plant guard, required and added)
     data: str  # Python expression of the data
     constant: bool  # reads no state
+    checks: tuple[str, ...] = ()  # Python conditions on ``data``: each computed number is finite
 
 
 @dataclass(frozen=True)
@@ -231,6 +232,20 @@ def _signature(data: m.Expr | m.ObjectValue) -> str | None:
         return "{" + ", ".join(items) + "}" if items else None
     value = _literal(data)
     return constant(value) if value is not None else None
+
+
+def _checks(data: m.Expr | m.ObjectValue, path: str = "data") -> list[str]:
+    """What must hold of computed data before it is sent: every computed number finite
+    (``isfinite`` for numbers, ``finite`` for whole objects); constants need no check."""
+    if isinstance(data, m.ObjectValue):
+        return [c for f in data.fields for c in _checks(f.value, f"{path}[{f.property.name!r}]")]
+    if not any(isinstance(n, m.VariableRef | m.StateRef | m.DataRef) for n in m.walk(data)):
+        return []
+    t = data.type
+    if isinstance(t, m.BasicType):
+        numeric = t.kind in (m.BasicKind.INTEGER, m.BasicKind.DOUBLE)
+        return [f"isfinite({path})"] if numeric else []
+    return [] if isinstance(t, m.EnumType) else [f"finite({path})"]
 
 
 def _expressions(data: m.Expr | m.ObjectValue) -> list[m.Expr]:
@@ -409,7 +424,7 @@ class _Planner:
                 if d.constant:
                     data = f"{d.table}[self.{d.field}]"
                 else:
-                    data, computed = f"self._provided({event.name!r}, self.{d.method})", True
+                    data, computed = d.method, True
                 provides = [p for p in self.model.provides if p.communication is event.communication]
                 alternatives = [_signature(p.data) for p in provides]
                 signature = "(" + "".join(f"{a}, " for a in alternatives).rstrip() + ")"
@@ -471,7 +486,8 @@ class _Planner:
                 continue
             data = event.provide.data
             constant = not any(isinstance(n, m.VariableRef | m.StateRef) for n in _expressions(data))
-            choices.append(DataChoice(edge.target.name, event.name, enabled, self.data_py(data), constant))
+            checks = tuple(_checks(data))
+            choices.append(DataChoice(edge.target.name, event.name, enabled, self.data_py(data), constant, checks))
         return DataPlant(
             self.automaton_field[automaton],
             comm_name,

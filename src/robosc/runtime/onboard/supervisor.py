@@ -22,6 +22,7 @@ from __future__ import absolute_import, annotations, print_function
 
 import copy
 import json
+import math
 import random
 import sys
 import threading
@@ -29,6 +30,8 @@ import time
 from typing import Any, Callable, ClassVar, Dict, FrozenSet, Optional, Tuple
 
 from .values import finite, plain
+
+isfinite = math.isfinite  # for the generated data checks
 
 REFUSED = object()  # data that must not be sent (not finite, or not computable)
 KEEP = object()  # an assignment whose value could not be computed keeps the old value
@@ -335,27 +338,15 @@ class Supervisor(object):
             label = self.LABELS[field]
             self._record(label + (".provide_none" if location == NO_DATA else "." + location), True, None)
 
-    def _provided(self, name: str, compute: Callable[[], Any]) -> Any:
-        """The data event ``name`` sends, computed by ``compute`` (kept while the state stays
-        the same); REFUSED when it cannot be computed or a number in it is not finite."""
-        if not self._dirty:
-            data = self._sent.get(name)
-            if data is not None:
-                return data
-        try:
-            data = compute()
-        except Exception as error:
-            self.warn(
-                "%s: cannot compute the data (%s: %s); not sent" % (name, type(error).__name__, error),
-                "data " + name,
-            )
-            data = REFUSED
-        if data is not REFUSED and not finite(data):
-            self.warn("%s: the data is not finite (%r); not sent" % (name, plain(data)), "finite " + name)
-            data = REFUSED
-        if not self._dirty:
-            self._sent[name] = data
-        return data
+    def _refuse(self, communication: str, error: Optional[BaseException]) -> Any:
+        """Computed data that must not be sent: it could not be computed (``error``), or a
+        number in it is not finite. Reported; the event is then not performed."""
+        if error is None:
+            self.warn("%s: a number in the data is not finite; not sent" % (communication,), "finite " + communication)
+        else:
+            why = "%s: %s" % (type(error).__name__, error)
+            self.warn("%s: cannot compute the data (%s); not sent" % (communication, why), "data " + communication)
+        return REFUSED
 
     def _assign(self, *assignments: Tuple[str, Tuple[Any, ...], str, Callable[[], Any], Any]) -> None:
         """Assignments of one transition: each (field, steps, label, compute, check); every

@@ -80,21 +80,41 @@ def plain(value: Any, depth: int = 0) -> Any:
     return repr(value)
 
 
+_SCALARS = frozenset((bool, int, str, bytes, type(None)))
+_isfinite = math.isfinite
+
+
 def finite(value: Any, depth: int = 0) -> bool:
-    """Whether every number in ``value`` (plain data, a Data object or a ROS message) is finite."""
-    if value is None or isinstance(value, (bool, int, str, bytes)):
+    """Whether every number in ``value`` (plain data, a Data object or a ROS message) is finite.
+    Data nested deeper than MAX_DEPTH is refused. (On the path of every computed command:
+    plain dicts of floats are checked without a call per item.)"""
+    kind = type(value)
+    if kind is float:
+        return _isfinite(value)
+    if kind in _SCALARS:
         return True
-    if isinstance(value, float):
-        return math.isfinite(value)
     if depth > MAX_DEPTH:
         return False
-    if isinstance(value, dict):
-        return all(finite(v, depth + 1) for v in value.values())
-    if isinstance(value, (list, tuple)):
+    if kind is dict:
+        for item in value.values():
+            item_kind = type(item)
+            if item_kind is float:
+                if not _isfinite(item):
+                    return False
+            elif item_kind not in _SCALARS and not finite(item, depth + 1):
+                return False
+        return True
+    if kind is list or kind is tuple:
         return all(finite(v, depth + 1) for v in value)
+    if isinstance(value, float):
+        return _isfinite(value)
+    if isinstance(value, (bool, int, str, bytes)):
+        return True
+    if isinstance(value, (dict, list, tuple)):
+        return finite(dict(value) if isinstance(value, dict) else list(value), depth)
     if type(value).__name__ in ("array", "ndarray"):
         try:
-            return all(finite(float(v)) for v in list(value)) if _is_float_array(value) else True
+            return all(_isfinite(float(v)) for v in list(value)) if _is_float_array(value) else True
         except (TypeError, ValueError):
             return True
     if isinstance(value, Data):
