@@ -68,7 +68,7 @@ def test_ros1_catkin_package(tmp_path: Path) -> None:
     } <= depends(package)
     cmake = (package / "CMakeLists.txt").read_text()
     assert "project(pick_and_light_robosc)" in cmake and "catkin_python_setup()" in cmake
-    assert "catkin_install_python(PROGRAMS scripts/pick_and_light_robosc_node" in cmake
+    assert "catkin_install_python(PROGRAMS scripts/${PROJECT_NAME}_node" in cmake
     node = (package / "scripts/pick_and_light_robosc_node").read_text()
     assert node.startswith("#!/usr/bin/env python3")
     assert (package / "scripts/pick_and_light_robosc_node").stat().st_mode & 0o111

@@ -49,6 +49,15 @@ class Field:
 
 
 @dataclass(frozen=True)
+class Part:
+    """What one automaton does on one event, and where it can."""
+
+    lines: list[str]
+    moves: list[tuple[str, str | None, str]] | None
+    gates: list[str]
+
+
+@dataclass(frozen=True)
 class Communication:
     name: str
     kind: str  # "outgoing", "incoming", "service", "action"
@@ -76,6 +85,7 @@ class EventPlan:
     plant: str  # the plant part of ``enabled``
     supervisor: str  # the supervisor part (required and added)
     effect: tuple[str, ...]  # Python lines (indented relative to the method body)
+    moves: tuple[tuple[str, str | None, str], ...] | None  # the effect as location changes only, if it is
     communication: Communication | None = None
     convert: str | None = None  # Python: (rules function, enum name, default) for enum data
     data: str | None = None  # constant data: Python expression for it; computed data: the method computing it
@@ -95,6 +105,11 @@ class EventPlan:
     @property
     def changes(self) -> bool:
         return bool(self.effect)
+
+    @property
+    def table_driven(self) -> bool:
+        """Nothing to send and only location changes: the runtime's ``moves`` performs it."""
+        return self.moves is not None and bool(self.moves) and not self.sends and self.data is None
 
 
 @dataclass(frozen=True)
@@ -155,7 +170,7 @@ class Plan:
     conversions: tuple[Conversion, ...]
     data_plants: tuple[DataPlant, ...]
     communications: tuple[Communication, ...]
-    automata: tuple[tuple[str, str], ...]  # (network automaton name, field), network order
+    automata: tuple[tuple[str, str | None], ...]  # (network automaton name, field or None: one location), network order
     variables: tuple[tuple[str, str], ...]  # (Component.variable, field), synthesis variables, network order
 
     @property
@@ -171,6 +186,11 @@ class Plan:
 
     def communication(self, name: str) -> Communication:
         return next(c for c in self.communications if c.name == name)
+
+
+def _constant(a: Automaton) -> bool:
+    """A message's plant: one location, a self-loop; nothing reads or changes its location."""
+    return a.kind is AutomatonKind.MESSAGE and len(a.locations) == 1
 
 
 def _wrapped(condition: str) -> str:
@@ -298,8 +318,11 @@ class _Planner:
 
     # -- state -------------------------------------------------------------------------------
     def fields(self) -> list[Field]:
+        """The automata (but messages' plants: one location, never read), then the variables."""
         out = [
-            Field(self.automaton_field[a], a.name, GROUPS[a.kind], repr(a.initial.name)) for a in self.network.automata
+            Field(self.automaton_field[a], a.name, GROUPS[a.kind], repr(a.initial.name))
+            for a in self.network.automata
+            if not _constant(a)
         ]
         for component in self.model.components:
             for behaviour in component.behaviours:
@@ -329,6 +352,10 @@ class _Planner:
         condition already requires it (``gated``), or it is taken from every state."""
         lines: list[str] = []
         first = True
+        bodies = [[*assigns, *([f"self.{field} = {target!r}"] if target is not None and target != source else [])]
+                  for source, _, target, assigns in branches]
+        if gated and bodies and all(body == bodies[0] for body in bodies):
+            return bodies[0]  # every way the event can happen here does the same
         for source, guard, target, assigns in branches:
             body = list(assigns)
             if target is not None and target != source:
@@ -346,9 +373,36 @@ class _Planner:
             first = False
         return lines
 
+    @staticmethod
+    def branch_moves(
+        field: str, branches: list[tuple[str | None, str, str | None, list[str]]], gated: bool
+    ) -> list[tuple[str, str | None, str]] | None:
+        """The same as :meth:`branch_lines` as data, (field, source or None, target) tried in
+        order, the first that applies for a field wins; None when a branch assigns or tests a
+        guard (then it needs code)."""
+        moves: list[tuple[str, str | None, str]] = []
+        changes = [(source, guard, target, assigns) for source, guard, target, assigns in branches]
+        if any(assigns for *_, assigns in changes):
+            return None
+        targets = [target if target is not None and target != source else None for source, _, target, _ in changes]
+        if gated and changes and all(x == targets[0] for x in targets):
+            return [(field, None, targets[0])] if targets[0] is not None else []
+        for (source, guard, _, _), target in zip(changes, targets, strict=True):
+            if target is None:
+                continue
+            if source is None and guard == "True" and not moves:
+                return [(field, None, target)]
+            if gated and len(changes) == 1:
+                return [(field, None, target)]
+            if guard != "True":
+                return None
+            moves.append((field, source, target))
+        return moves
+
     # -- events --------------------------------------------------------------------------------
-    def component_part(self, event: Event, automaton: Automaton, gated: bool) -> tuple[list[str], list[str]]:
-        """(effect lines, Python conditions where the component can take part)."""
+    def component_part(self, event: Event, automaton: Automaton, gated: bool) -> Part:
+        """The effect (lines and, where it is only location changes, moves) and the Python
+        conditions where the component can take part."""
         component = automaton.component
         assert component is not None and component.automaton is not None
         field = self.automaton_field[automaton]
@@ -366,9 +420,9 @@ class _Planner:
             branches.append((source.name if source else None, guard, target.name if target else None, assigns))
             here = "True" if source is None else f"self.{field} == {source.name!r}"
             gates.append(conjunction([here, guard]))
-        return self.branch_lines(field, branches, gated), gates
+        return Part(self.branch_lines(field, branches, gated), self.branch_moves(field, branches, gated), gates)
 
-    def plant_part(self, event: Event, automaton: Automaton) -> tuple[list[str], list[str]]:
+    def plant_part(self, event: Event, automaton: Automaton) -> Part:
         field = self.automaton_field[automaton]
         branches: list[tuple[str | None, str, str | None, list[str]]] = []
         gates = []
@@ -379,7 +433,8 @@ class _Planner:
             guard = self.py(e.guard)
             branches.append((source, guard, e.target.name if e.target is not e.source else None, []))
             gates.append(conjunction(["True" if source is None else f"self.{field} == {source!r}", guard]))
-        return self.branch_lines(field, branches, True), gates  # the plant's condition is always checked first
+        # the plant's condition is always checked first
+        return Part(self.branch_lines(field, branches, True), self.branch_moves(field, branches, True), gates)
 
     @staticmethod
     def gate(options: list[str]) -> str:
@@ -392,19 +447,21 @@ class _Planner:
 
     def event(self, event: Event) -> EventPlan:
         effect: list[str] = []
+        moves: list[tuple[str, str | None, str]] | None = []
         gates: list[str] = []
         for automaton in self.network.automata:
             if event not in automaton.alphabet:
                 continue
             if automaton.kind is AutomatonKind.COMPONENT:
                 total = not event.controllable or event.kind is K.CANCEL  # responsiveness
-                lines, options = self.component_part(event, automaton, not total)
+                part = self.component_part(event, automaton, not total)
                 if not total:
-                    gates.append(self.gate(options))
+                    gates.append(self.gate(part.gates))
             else:
-                lines, options = self.plant_part(event, automaton)
-                gates.append(self.gate(options))
-            effect += lines
+                part = self.plant_part(event, automaton)
+                gates.append(self.gate(part.gates))
+            effect += part.lines
+            moves = None if moves is None or part.moves is None else [*moves, *part.moves]
         plant = conjunction(gates)
         supervisor = "True"
         if event.controllable:
@@ -438,6 +495,7 @@ class _Planner:
             plant,
             supervisor,
             tuple(effect),
+            tuple(moves) if moves is not None else None,
             communication,
             convert,
             data,
@@ -517,7 +575,7 @@ class _Planner:
             tuple(self.conversions.values()),
             tuple(self.data_plants.values()),
             tuple(self.communications.values()),
-            tuple((a.name, self.automaton_field[a]) for a in self.network.automata),
+            tuple((a.name, None if _constant(a) else self.automaton_field[a]) for a in self.network.automata),
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
         )
 

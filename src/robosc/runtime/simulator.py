@@ -83,10 +83,10 @@ class Simulator:
         self.on_event = on_event
         self.start = time.monotonic()
         self.events: list[str] = []
-        self._locations = []
+        self._locations: list[tuple[str | None, dict[str, m.State], m.State]] = []
         for automaton, (_, field) in zip(self.network.automata, plan.automata, strict=True):  # network order
             by_name = {loc.name: loc for loc in automaton.locations}
-            self._locations.append((field, by_name))
+            self._locations.append((field, by_name, automaton.initial))  # no field: one location
         variable_fields = dict(plan.variables)
         self._variables = []
         for v in self.network.variables:
@@ -98,7 +98,7 @@ class Simulator:
     # ---- state ---------------------------------------------------------------------------
     def network_state(self) -> NetworkState:
         sup = self.supervisor
-        locations = tuple(by_name[getattr(sup, f)] for f, by_name in self._locations)
+        locations = tuple(only if f is None else by_name[getattr(sup, f)] for f, by_name, only in self._locations)
         values = tuple(values[getattr(sup, f)] for f, values in self._variables)
         return NetworkState(locations, values)
 

@@ -155,6 +155,29 @@ def _set_path(target: Any, steps: Tuple[Any, ...], value: Any) -> None:
         setattr(target, last, value)
 
 
+def moves(method: str, name: str, controllable: bool, *changes: Tuple[str, Optional[str], str]) -> Any:
+    """The method performing an event whose effect is only location changes (a reset, a tau
+    transition, a response that moves a component): ``changes`` are (field, from, to), tried
+    in order; for each field the first whose ``from`` is its location (None: any) applies."""
+
+    def perform(self: Supervisor, data: Any = None) -> Optional[str]:
+        done = set()
+        for field, source, target in changes:
+            if field not in done and (source is None or getattr(self, field) == source):
+                setattr(self, field, target)
+                done.add(field)
+        if not controllable:
+            return None
+        self._dirty = True
+        if self.observer is not None:
+            self._record(name, True, data)
+        return name
+
+    perform.__name__ = method
+    perform.__doc__ = "%s: %s" % (name, ", ".join("%s %s -> %s" % change for change in changes))
+    return perform
+
+
 class Supervisor(object):
     """The state of a robot and its supervisor. Subclassed by the generated module.
 
