@@ -19,6 +19,26 @@ from typing import Any, Dict, List, Optional, Union
 
 KEEPALIVE_SECONDS = 10.0
 QUEUE_SIZE = 2000  # events kept for a slow browser; older ones are dropped
+BACKLOG = 512  # connections waiting to be accepted: 200 pages opening at once are all taken at once
+LOCAL_HOSTS = ("127.0.0.1", "localhost", "[::1]")  # the Host header a page on this machine sends
+
+
+def local_host(header: Optional[str]) -> bool:
+    """Whether a request's Host header names this machine's loopback (with any port): a page
+    from elsewhere that re-binds its own name to 127.0.0.1 (DNS rebinding) is refused."""
+    if not header:
+        return False
+    host = header.strip().lower()
+    if host.startswith("["):
+        name = host[: host.find("]") + 1] if "]" in host else host
+    else:
+        name = host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+    return name in LOCAL_HOSTS
+
+
+class _Server(ThreadingHTTPServer):
+    request_queue_size = BACKLOG
+    daemon_threads = True
 
 
 class LiveView(object):
@@ -35,6 +55,9 @@ class LiveView(object):
                 pass
 
             def do_GET(self) -> None:
+                if not local_host(self.headers.get("Host")):
+                    self.send_error(403, "the live view answers only to 127.0.0.1 and localhost")
+                    return
                 path = self.path.split("?", 1)[0]
                 if path in ("/", "/index.html"):
                     self.send_response(200)
@@ -55,8 +78,7 @@ class LiveView(object):
                 else:
                     self.send_error(404)
 
-        self.server = ThreadingHTTPServer((host, port), Handler)
-        self.server.daemon_threads = True
+        self.server = _Server((host, port), Handler)
         self.port = self.server.server_address[1]
         self.thread = threading.Thread(target=self.server.serve_forever, name="robosc-live-view")
         self.thread.daemon = True
