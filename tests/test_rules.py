@@ -163,6 +163,22 @@ CASES = {
         (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
         (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
     ],
+    "constant": [
+        (
+            robot(component(OK_STATES, "incoming message d with type: double"), "provide d with 1.0 / 0.0"),
+            "division by zero",
+        ),
+        (
+            robot(
+                component(
+                    "variable x: double initial marked state a { on response from m do x := 2.0 / (1 - 1) }",
+                    "outgoing message m with type: double",
+                )
+            ),
+            "division by zero",
+        ),
+        (robot("datatype enum E from double to { value / -0.0 > 1.0 -> big default -> small }"), "division by zero"),
+    ],
 }
 
 VALID = {
@@ -198,6 +214,7 @@ VALID = {
     "rule-14": robot("requirement act needs S.idle and S.active"),
     "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
+    "constant": robot(component(OK_STATES, "incoming message d with type: double"), "provide d with 1.0 / (2 - 1.5)"),
 }
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 
 from robosc.language.checks import (
+    constant_values,
     enum_default,
     enum_source,
     initial_state,
@@ -47,6 +48,7 @@ CHECKS: tuple[Check, ...] = (
     shared_topics.check,  # rule 13 (warning)
     topic_names.check,  # rule 15
     enum_default.check,  # section 4: exactly one default rule per enum
+    constant_values.check,  # a constant divisor of zero can never be computed
 )
 
 
