@@ -181,7 +181,9 @@ def tick_benchmarks(baseline: str | None, work: Path) -> list[dict[str, Any]]:
     flavours = [(Flavour("now", None, False), load("maze_solver"), load("line_follower"))]
     if baseline:
         old = Flavour(baseline, None, True)
-        flavours.append((old, load_baseline(baseline, "maze_solver", work), load_baseline(baseline, "line_follower", work)))
+        flavours.append(
+            (old, load_baseline(baseline, "maze_solver", work), load_baseline(baseline, "line_follower", work))
+        )
     prepared = [(f, cases(f, maze, lf)) for f, maze, lf in flavours]
     samples: dict[tuple[str, str], list[int]] = {}
     for _ in range(3):

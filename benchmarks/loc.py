@@ -96,7 +96,9 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         old_source = None
         if args.baseline:
-            archive = subprocess.run(["git", "-C", str(ROOT), "archive", args.baseline, "src"], capture_output=True, check=True)
+            archive = subprocess.run(
+                ["git", "-C", str(ROOT), "archive", args.baseline, "src"], capture_output=True, check=True
+            )
             subprocess.run(["tar", "-x", "-C", tmp], input=archive.stdout, check=True)
             old_source = Path(tmp) / "src"
         header = "| model | model lines | with libraries | generated now (module + ROS 1 node + ROS 2 node) | per model line |"
@@ -121,7 +123,9 @@ def main() -> None:
                 row += f" {before} | {before / own:.2f} |"
             print(row)
         runtime = sum(non_blank(text) for text in runtime_files().values())
-        print(f"\nthe runtime every package carries (robosc.runtime.onboard, the same for every robot): {runtime} lines")
+        print(
+            f"\nthe runtime every package carries (robosc.runtime.onboard, the same for every robot): {runtime} lines"
+        )
         print(f"worst generated lines per model line: {worst:.2f} (target: at most {TARGET})")
         if worst > TARGET:
             raise SystemExit(1)

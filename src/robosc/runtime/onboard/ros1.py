@@ -65,7 +65,7 @@ class SupervisorNode(NodeCore):
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
         if supervising:
-            self.text_publishers[BLOCKED_TOPIC] = rospy.Publisher(BLOCKED_TOPIC, self.text_type, queue_size=10)
+            self.text_publishers[BLOCKED_TOPIC] = rospy.Publisher(BLOCKED_TOPIC, self.text_type, queue_size=depth)
         for topic in self.outputs.values():
             topic.publisher = rospy.Publisher(topic.name, topic.type, queue_size=depth)
         for topic in self.inputs.values():

@@ -13,7 +13,8 @@ node from sensor-data publishers (best effort) and reliable ones alike; other da
 is subscribed reliably (no first message lost while the connection is made), and
 commands are published reliably. Each can be changed per topic with ROS 2's
 ``qos_overrides.<topic>.<publisher|subscription>.<policy>`` parameters. A controller runs on the single-threaded executor (no lock needed); a
-supervision layer on a multi-threaded one, every callback holding the supervisor's lock.
+supervision layer on a multi-threaded one when it forwards service calls or action goals (they wait for the robot
+on threads of their own), every callback holding the supervisor's lock; otherwise single-threaded too.
 """
 
 from __future__ import absolute_import, annotations
@@ -91,7 +92,7 @@ class SupervisorNode(Node, NodeCore):
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10)}
         if supervising:
-            self.text_publishers[BLOCKED_TOPIC] = self.create_publisher(self.text_type, BLOCKED_TOPIC, 10)
+            self.text_publishers[BLOCKED_TOPIC] = self.create_publisher(self.text_type, BLOCKED_TOPIC, reliable)
         for topic in self.outputs.values():  # commands to the robot
             topic.publisher = self.create_publisher(topic.type, topic.name, reliable, qos_overriding_options=overrides)
             if supervising:  # ... as the controller sends them
@@ -393,7 +394,9 @@ def main(
         try_shutdown()
         return 1
     node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
-    executor = MultiThreadedExecutor(num_threads=4) if mode == "supervisor" else SingleThreadedExecutor()
+    # a supervision layer forwarding calls or goals waits for the robot on threads of its own
+    waits = mode == "supervisor" and bool(node.service_calls or node.action_calls)
+    executor = MultiThreadedExecutor(num_threads=4) if waits else SingleThreadedExecutor()
     executor.add_node(node)
     status = 0
     try:
