@@ -116,13 +116,16 @@ import rospy
 from sensor_msgs.msg import LaserScan
 rospy.init_node("scanner", anonymous=True)
 out = rospy.Publisher("/scan", LaserScan, queue_size=10)
-rate = float(sys.argv[1])
+rate, count_file = float(sys.argv[1]), sys.argv[2]
 big = LaserScan(); big.ranges = [5.0] * 100000
 kinds = [LaserScan(), big, LaserScan(ranges=[float("nan")] * 360), LaserScan(ranges=[0.1, 0.2]), big]
 sent, start = 0, time.time()
 while not rospy.is_shutdown():
     out.publish(kinds[sent % len(kinds)])
     sent += 1
+    if sent % 200 == 0:
+        with open(count_file, "w") as handle:
+            handle.write("%d %f" % (sent, time.time() - start))
     lag = start + sent / rate - time.time()
     if lag > 0:
         time.sleep(lag)
@@ -200,7 +203,7 @@ def layer(ros: int, seconds: float, rate: float, work: Path) -> dict[str, float]
         logs.close()
 
 
-def memory(seconds: float, rate: float, work: Path) -> list[tuple[float, float]]:
+def memory(seconds: float, rate: float, work: Path) -> tuple[list[tuple[float, float]], float]:
     from ros_support import build_package, free_port
 
     package = build_package("examples/line_follower.rscd", 1, "controller", work)
@@ -218,15 +221,17 @@ def memory(seconds: float, rate: float, work: Path) -> list[tuple[float, float]]
         node = subprocess.Popen([ROS1_PYTHON, str(script), "_rate:=10.0"], env=env, stdout=logs, stderr=logs)
         processes.append(node)
         time.sleep(3.0)
+        counted = work / "scans_sent"
         processes.append(
-            subprocess.Popen([ROS1_PYTHON, "-c", SCANS_ROS1, str(rate)], env=env, stdout=logs, stderr=logs)
+            subprocess.Popen([ROS1_PYTHON, "-c", SCANS_ROS1, str(rate), str(counted)], env=env, stdout=logs, stderr=logs)
         )
         samples = []
         start = time.time()
         while time.time() - start <= seconds:
             samples.append((round(time.time() - start), rss_mb(node.pid)))
             time.sleep(10)
-        return samples
+        sent, elapsed = counted.read_text().split()
+        return samples, int(sent) / float(elapsed)
     finally:
         for p in reversed(processes):
             p.terminate()
@@ -256,8 +261,10 @@ def main() -> None:
                     f"| {ros} | {r['sent'] / s:.0f} | {r['forwarded'] / s:.0f} | {r['reported'] / s:.0f} | {r['dropped']:.0f} | {s:.1f} |"
                 )
         if args.part in ("memory", "all"):
-            samples = memory(args.memory_seconds, args.rate, Path(tmp))
-            print("\nROS 1 controller node, resident memory (MB) under malformed and 100,000-range scans:")
+            samples, achieved = memory(args.memory_seconds, args.rate, Path(tmp))
+            print(
+                f"\nROS 1 controller node, resident memory (MB) under malformed and 100,000-range scans ({achieved:.0f}/s):"
+            )
             print(" ".join(f"{t}s:{mb:.1f}" for t, mb in samples))
             print(
                 f"first {samples[0][1]:.1f} MB, last {samples[-1][1]:.1f} MB, most {max(mb for _, mb in samples):.1f} MB"

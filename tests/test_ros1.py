@@ -207,6 +207,33 @@ done({"states": len(state.messages()) - before, "light": state.value("Light")})
     assert node.poll() is None
 
 
+def test_a_goal_while_the_server_is_absent_never_hangs_the_node(ros1: Ros1, tmp_path: Path) -> None:
+    """The light's service is there, the arm's action server is not: after server_timeout
+    the goal fails (the error event), the cycle never stops, and the log says why."""
+    package = build_package("tests/models/calls_ros1.rscd", 1, "controller", tmp_path)
+    node = ros1.node(package, rate=20, seed=5, publish_state=True, server_timeout=1.0)
+    result = ros1.client(
+        """
+from std_srvs.srv import SetBool, SetBoolResponse
+start()
+state = State()
+rospy.Service("/light/set", SetBool, lambda request: SetBoolResponse(success=True, message="ok"))
+assert wait_for(lambda: state.value("Arm") == "working", 20), "the goal was not sent"
+started = time.time()
+assert wait_for(lambda: state.value("Arm") == "idle", 5), "the goal never failed"
+failed_after = time.time() - started
+before = len(state.messages())
+rospy.sleep(1.0)
+done({"failed_after": failed_after, "states": len(state.messages()) - before})
+"""
+    )
+    assert 0.5 < result["failed_after"] < 3.0
+    assert result["states"] >= 10  # the cycle goes on at 20 Hz
+    log = ros1.processes.output()
+    assert "action /arm/work: no server after 1.0 s; failed" in log
+    assert node.poll() is None
+
+
 def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros1: Ros1, tmp_path: Path) -> None:
     package = build_package("examples/maze_solver.rscd", 1, "supervisor", tmp_path)
     node = ros1.node(package, rate=20, publish_state=True)
