@@ -164,6 +164,12 @@ def test_live_view_keeps_up_with_100_events_per_second(browser: Any, tmp_path: P
         assert lag < 50  # events are drawn as they come, not piling up
         components = ["Camera", "Arm", "Light", "Speaker", "Stop"]
         assert all(len(current(browser, c)) == 1 for c in components)
+        # the busy services and actions: their cells show a location of their plant
+        seen = set()
+        for _ in range(100):
+            seen.add(browser.execute_script("return document.getElementById('plant:pick').textContent;"))
+            time.sleep(0.02)
+        assert seen & {"executing", "ready", "error"}, seen
     finally:
         process.terminate()
         process.wait(timeout=10)

@@ -203,10 +203,10 @@ def _show_state(sim: Simulator) -> None:
 
     snapshot = sim.snapshot()
     table = Table("automaton / variable", "value", box=None, pad_edge=False)
-    components = {c.name for c in sim.network.model.components}
     for name, location in snapshot["automata"].items():
-        busy = location not in ("idle",) and not name.endswith("_data")
-        if name in components or busy:
+        table.add_row(name, location)
+    for name, location in snapshot["communications"].items():
+        if location != "idle":  # a service or action that is busy
             table.add_row(name, location)
     for name, value in snapshot["variables"].items():
         table.add_row(name, str(value))
