@@ -203,10 +203,32 @@ def layer(ros: int, seconds: float, rate: float, work: Path) -> dict[str, float]
         logs.close()
 
 
-def memory(seconds: float, rate: float, work: Path) -> tuple[list[tuple[float, float]], float]:
+def baseline_package(revision: str, work: Path) -> Path:
+    """The line follower's ROS 1 package as robosc ``revision`` generated it."""
+    tree = work / f"robosc-{revision}"
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True)
+    tree.mkdir(parents=True, exist_ok=True)
+    subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
+    target = work / f"baseline-{revision}"
+    code = (
+        "from pathlib import Path; from robosc.api import load_model, plan_supervisor, synthesize_model; "
+        "from robosc.codegen.ros import generate; "
+        f"generate(plan_supervisor(synthesize_model(load_model({str(ROOT / 'examples/line_follower.rscd')!r}))), "
+        f"1, 'controller', Path({str(target)!r}))"
+    )
+    subprocess.run([sys.executable, "-c", code], env={**os.environ, "PYTHONPATH": str(tree / "src")}, check=True)
+    return target
+
+
+def memory(
+    seconds: float, rate: float, work: Path, baseline: str | None = None
+) -> tuple[list[tuple[float, float]], float]:
     from ros_support import build_package, free_port
 
-    package = build_package("examples/line_follower.rscd", 1, "controller", work)
+    if baseline:
+        package = baseline_package(baseline, work)
+    else:
+        package = build_package("examples/line_follower.rscd", 1, "controller", work)
     port = free_port()
     env = env_ros1(port, work / "home")
     logs = open(work / "memory.log", "ab")  # noqa: SIM115
@@ -217,13 +239,15 @@ def memory(seconds: float, rate: float, work: Path) -> tuple[list[tuple[float, f
     ]
     try:
         time.sleep(1.5)
-        script = next((package / "scripts").glob("*_node"))
+        script = next(p for p in (package / "scripts").iterdir() if p.name.split(".")[0].endswith("_node"))
         node = subprocess.Popen([ROS1_PYTHON, str(script), "_rate:=10.0"], env=env, stdout=logs, stderr=logs)
         processes.append(node)
         time.sleep(3.0)
         counted = work / "scans_sent"
         processes.append(
-            subprocess.Popen([ROS1_PYTHON, "-c", SCANS_ROS1, str(rate), str(counted)], env=env, stdout=logs, stderr=logs)
+            subprocess.Popen(
+                [ROS1_PYTHON, "-c", SCANS_ROS1, str(rate), str(counted)], env=env, stdout=logs, stderr=logs
+            )
         )
         samples = []
         start = time.time()
@@ -249,6 +273,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--rate", type=float, default=1000.0)
     parser.add_argument("--memory-seconds", type=float, default=180.0)
+    parser.add_argument("--baseline", help="memory: also run the node robosc REV generated (e.g. f1df180)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         if args.part in ("layer", "all"):
