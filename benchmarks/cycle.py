@@ -423,13 +423,9 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
             "p99": percentile(values, 99) / 1000,
         }
     finally:
-        for p in reversed(processes):
-            p.terminate()
-        for p in processes:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        from ros_support import stop_all
+
+        stop_all(processes)
         logs.close()
 
 

@@ -193,13 +193,9 @@ def layer(ros: int, seconds: float, rate: float, work: Path) -> dict[str, float]
         result["dropped"] = result["sent"] - result["forwarded"] - result["reported"]
         return result
     finally:
-        for p in reversed(processes):
-            p.terminate()
-        for p in processes:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        from ros_support import stop_all
+
+        stop_all(processes)
         logs.close()
 
 
@@ -257,13 +253,9 @@ def memory(
         sent, elapsed = counted.read_text().split()
         return samples, int(sent) / float(elapsed)
     finally:
-        for p in reversed(processes):
-            p.terminate()
-        for p in processes:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        from ros_support import stop_all
+
+        stop_all(processes)
         logs.close()
 
 

@@ -111,15 +111,20 @@ class Processes:
         return "\n".join(f"--- {log.name}\n{log.read_text(errors='replace')[-3000:]}" for _, log in self.running)
 
     def stop(self) -> None:
-        for process, _ in reversed(self.running):
-            if process.poll() is None:
-                process.terminate()
-        for process, _ in self.running:
-            try:
-                process.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
+        stop_all([process for process, _ in self.running])
+
+
+def stop_all(processes: list[subprocess.Popen[bytes]]) -> None:
+    """Terminate processes, the last started first; kill what does not end in 10 s."""
+    for process in reversed(processes):
+        if process.poll() is None:
+            process.terminate()
+    for process in processes:
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
 
 
 # ---- ROS 1 ---------------------------------------------------------------------------------

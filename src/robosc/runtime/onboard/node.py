@@ -161,6 +161,8 @@ class NodeCore(object):
             else:
                 log("error", "parameter refused: event_log %r cannot be written (%s); no event log" % (path, why))
         self.blocked_count = self.forwarded_count = 0
+        self.text_publishers: Dict[str, Any] = {}  # made by the adapter
+        self.text_type: Any = None
         self._plan_routes(robot_class)
 
     def _plan_routes(self, robot_class: Any) -> None:
@@ -250,7 +252,8 @@ class NodeCore(object):
 
     # ---- data from the robot ---------------------------------------------------------------
     def receive(self, topic: Topic, message: Any) -> None:
-        """A message on a topic the robot publishes: each event on it, then what follows."""
+        """A message on a topic the robot publishes: each event on it, then what follows; a
+        supervision layer passes it on to the controller."""
         try:
             for event in topic.events:
                 comm = self.supervisor.COMMUNICATION[event.communication]
@@ -258,6 +261,8 @@ class NodeCore(object):
             self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
+        if topic.forward is not None:
+            topic.forward.publish(message)
 
     def answer(self, event: Any, value: Any) -> None:
         """A service's or action's response, error or feedback came back."""
@@ -340,12 +345,18 @@ class NodeCore(object):
         except Exception as error:
             self.warnings("cannot report a blocked command: %s" % (error,), "blocked report")
 
-    # ---- implemented by the adapters -------------------------------------------------------
     def publish(self, topic: Topic, message: Any) -> bool:
-        raise NotImplementedError
+        """Put a message on a topic (publishers of rospy and rclpy alike)."""
+        topic.publisher.publish(message)
+        return True
 
     def publish_text(self, topic_name: str, text: str) -> None:
-        raise NotImplementedError
+        """``state`` or ``blocked``, as std_msgs/String (``text_type``), where the adapter made it."""
+        publisher = self.text_publishers.get(topic_name)
+        if publisher is not None:
+            publisher.publish(self.text_type(data=text))
+
+    # ---- implemented by the adapters -------------------------------------------------------
 
     def call_service(self, call: Call, request: Any) -> bool:
         raise NotImplementedError

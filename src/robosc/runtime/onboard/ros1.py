@@ -23,7 +23,7 @@ from typing import Any, Callable, Optional
 import rospy
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, Topic, controller_side, default_name
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, controller_side, default_name
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
 
@@ -109,24 +109,16 @@ class SupervisorNode(NodeCore):
     def cycle(self, _event: Any = None) -> None:
         NodeCore.cycle(self)
 
-    def receive(self, topic: Topic, message: Any) -> None:
-        NodeCore.receive(self, topic, message)
-        if topic.forward is not None:
-            topic.forward.publish(message)
-
-    def publish(self, topic: Topic, message: Any) -> bool:
-        topic.publisher.publish(message)
-        return True
-
-    def publish_text(self, topic_name: str, text: str) -> None:
-        publisher = self.text_publishers.get(topic_name)
-        if publisher is not None:
-            publisher.publish(self.text_type(data=text))
-
     # ---- services and actions of a controller --------------------------------------------------------
     def call_service(self, call: Call, request: Any) -> bool:
+        return self.on_a_thread(self.call_now, call, request)
+
+    @staticmethod
+    def on_a_thread(work: Callable[[Call, int, Any], None], call: Call, request: Any) -> bool:
+        """A new call or goal (older ones are ignored from now on), done on a thread: rospy's
+        calls are synchronous and a server may take its time."""
         call.goal += 1
-        thread = threading.Thread(target=self.call_now, args=(call, call.goal, request))
+        thread = threading.Thread(target=work, args=(call, call.goal, request))
         thread.daemon = True
         thread.start()
         return True
@@ -146,11 +138,7 @@ class SupervisorNode(NodeCore):
                 self.answer(call.error if response is None else call.response, response)
 
     def start_goal(self, call: Call, goal: Any) -> bool:
-        call.goal += 1
-        thread = threading.Thread(target=self.send_goal_now, args=(call, call.goal, goal))
-        thread.daemon = True
-        thread.start()
-        return True
+        return self.on_a_thread(self.send_goal_now, call, goal)
 
     def send_goal_now(self, call: Call, number: int, goal: Any) -> None:
         if not call.client.wait_for_server(rospy.Duration(max(self.params["server_timeout"], 0.001))):

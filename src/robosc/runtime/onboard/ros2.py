@@ -36,7 +36,7 @@ from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, Topic, controller_side, default_name
+from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, controller_side, default_name
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
 SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers
@@ -148,20 +148,6 @@ class SupervisorNode(Node, NodeCore):
             self.destroy_timer(timer)
         self.spent = []
         NodeCore.cycle(self)
-
-    def receive(self, topic: Topic, message: Any) -> None:
-        NodeCore.receive(self, topic, message)
-        if topic.forward is not None:
-            topic.forward.publish(message)
-
-    def publish(self, topic: Topic, message: Any) -> bool:
-        topic.publisher.publish(message)
-        return True
-
-    def publish_text(self, topic_name: str, text: str) -> None:
-        publisher = self.text_publishers.get(topic_name)
-        if publisher is not None:
-            publisher.publish(self.text_type(data=text))
 
     # ---- services and actions of a controller ------------------------------------------------------
     def when_ready(self, call: Call, ready: Callable[[], bool], go: Callable[[], None]) -> None:
