@@ -194,6 +194,7 @@ class Supervisor(object):
     EVENT: ClassVar[Dict[str, Event]]
     CONTROLLABLE: ClassVar[Tuple[str, ...]]
     UNCONTROLLABLE: ClassVar[Tuple[str, ...]]
+    EXPECTED_AT: ClassVar[Dict[str, int]]  # an uncontrollable event's place in _expected()
     BY_METHOD: ClassVar[Dict[str, Event]]
     REQUESTS: ClassVar[FrozenSet[str]]
     COMMUNICATION: ClassVar[Dict[str, Communication]]
@@ -209,6 +210,7 @@ class Supervisor(object):
         cls.EVENT = dict((e.name, e) for e in cls.EVENTS)
         cls.CONTROLLABLE = tuple(e.name for e in cls.EVENTS if e.controllable)
         cls.UNCONTROLLABLE = tuple(e.name for e in cls.EVENTS if not e.controllable)
+        cls.EXPECTED_AT = dict((name, index) for index, name in enumerate(cls.UNCONTROLLABLE))
         cls.BY_METHOD = dict((e.method, e) for e in cls.EVENTS)
         cls.REQUESTS = frozenset(e.method for e in cls.EVENTS if e.is_request)
         cls.COMMUNICATION = dict((c.name, c) for c in cls.COMMUNICATIONS)
@@ -300,7 +302,7 @@ class Supervisor(object):
             raise KeyError("no uncontrollable event %r" % (name,))
         if raw and event.convert is not None:
             value = self.convert(event.convert, value)
-        if name not in self.expected():
+        if not self._expected()[self.EXPECTED_AT[name]]:
             self.warn("ignored %s: not expected now" % (name,), "unexpected " + name)
             return False
         getattr(self, event.method)(value)
