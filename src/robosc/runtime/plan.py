@@ -381,7 +381,7 @@ class _Planner:
         order, the first that applies for a field wins; None when a branch assigns or tests a
         guard (then it needs code)."""
         moves: list[tuple[str, str | None, str]] = []
-        changes = [(source, guard, target, assigns) for source, guard, target, assigns in branches]
+        changes = branches
         if any(assigns for *_, assigns in changes):
             return None
         targets = [target if target is not None and target != source else None for source, _, target, _ in changes]
