@@ -8,9 +8,9 @@ def transfer_line(n: int) -> str:
     small factory, stretched). A part made into a full buffer overflows it, and an
     overflow blocks: synthesis must keep each machine from starting while its
     output buffer is full."""
-    lines = ["robot TransferLine {"]
+    lines = ["robot TransferLine {", "    interface trigger use Trigger from std_srvs"]
     for i in range(1, n + 1):
-        lines.append(f"    component M{i} {{ service work{i} with request: none, response: none }}")
+        lines.append(f"    component M{i} {{ service work{i} with request: none, response: none links trigger }}")
     for i in range(1, n):
         lines.append(f"""    component B{i} {{
         behaviour {{
@@ -22,7 +22,7 @@ def transfer_line(n: int) -> str:
             state overflow {{ on request to clear{i} goto empty }}
         }}
     }}
-    component Operator{i} {{ service clear{i} with request: none, response: none }}
+    component Operator{i} {{ service clear{i} with request: none, response: none links trigger }}
     requirement clear{i} needs B{i}.empty""")
     lines.append("}")
     return "\n".join(lines) + "\n"
@@ -54,12 +54,12 @@ def philosophers(n: int) -> str:
     """N dining philosophers and N forks. A philosopher takes the left fork, then starts
     eating (a service call) by taking the right one; when the call returns both forks
     are free again. Everyone holding a left fork is a deadlock: synthesis must prevent it."""
-    lines = ["robot Philosophers {"]
+    lines = ["robot Philosophers {", "    interface trigger use Trigger from std_srvs"]
     for i in range(n):
         before = (i - 1) % n  # fork i is the left fork of P{i} and the right fork of P{before}
         lines.append(f"""    component P{i} {{
         incoming message take_left{i} with type: none
-        service eat{i} with request: none, response: none
+        service eat{i} with request: none, response: none links trigger
         behaviour {{
             initial marked state thinking {{ on request to take_left{i} goto has_left }}
             state has_left {{ on request to eat{i} goto eating }}

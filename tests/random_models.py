@@ -26,7 +26,7 @@ def robots(draw: st.DrawFn, variables: bool = True, guards: bool = True, adversa
     requirements over one component's states only (what libFAUDES can take). With
     ``adversarial``, its names are chosen to collide once turned into code."""
     n_components = draw(st.integers(1, 3))
-    lines = ["robot Random {"]
+    lines = ["robot Random {", "  interface trigger use Trigger from std_srvs"]
     components = []
     component_names = draw(st.permutations(COMPONENT_NAMES))[:n_components] if adversarial else []
     message_pool = list(draw(st.permutations(MESSAGE_NAMES))) if adversarial else []
@@ -49,7 +49,7 @@ def robots(draw: st.DrawFn, variables: bool = True, guards: bool = True, adversa
         lines += [f"    outgoing message {s} with type: none" for s in sensors]
         lines += [f"    incoming message {k} with type: none" for k in commands]
         if service:
-            lines.append(f"    service {srv} with request: none, response: none")
+            lines.append(f"    service {srv} with request: none, response: none links trigger")
         lines.append("    behaviour {")
         if variables:
             lines.append(f"      variable {flag}: boolean = {draw(st.sampled_from(['true', 'false']))}")

@@ -215,5 +215,5 @@ def test_generate_refuses_what_ros_cannot_run(tmp_path: Path) -> None:
     model.write_text("robot U {\n  component C {\n    service s with request: none, response: none\n  }\n}\n")
     result = run("generate", str(model), "--ros", "2", "-o", str(tmp_path / "y"))
     assert result.returncode == 1
-    assert f"{model}:3:5: error: service 's' needs an interface" in result.stderr
+    assert f"{model}:3:5: error: service 's' must link the ROS service type it calls" in result.stderr
     assert "Traceback" not in result.stderr

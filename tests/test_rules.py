@@ -28,6 +28,10 @@ CASES = {
         (robot(component("initial marked state a {} state a {}")), "state 'a' of 'C'"),
         (robot(component("variable v: boolean variable v: boolean " + OK_STATES)), "variable 'v' of 'C'"),
         (robot("datatype object P { x: double x: double }"), "property 'x' of P"),
+        (robot(component(OK_STATES).replace("component C", "component s")), "component 's' differs from 'S'"),
+        (robot(component("initial marked state a {} state A {}")), "state 'A' of 'C' differs from 'a' ("),
+        (robot(component(OK_STATES, "outgoing message Sense with type: none")), "communication 'Sense' differs"),
+        (robot("datatype enum E from double to { value > 1.0 -> Idle default -> small }"), "has the name of state"),
         (robot("datatype object P {} datatype object P {}"), "data type 'P'"),
         (robot("interface i use A from b interface i use A from b"), "interface 'i'"),
         (robot("datatype enum E from double to { default -> idle }"), "name of state 'S.idle'"),
@@ -108,6 +112,68 @@ CASES = {
             "type string",
         ),
     ],
+    "enum-values": [
+        (
+            robot("datatype enum E from double to { value > 1.0 -> big value < -1.0 -> big default -> small }"),
+            "names value 'big' in more than one rule",
+        ),
+        (robot("datatype enum E from double to { value > 1.0 -> big default -> big }"), "value 'big' in more"),
+    ],
+    "no-array": [
+        (
+            robot(
+                component(
+                    "variable n: integer(0..3) initial marked state a { on response from m do n := value[0] }",
+                    "outgoing message m with type: array(integer(0..3))",
+                ),
+                "requirement act needs C.n > 1",
+            ),
+            "the data of 'm' is an array, and it reaches 'n'",
+        ),
+        (
+            robot(
+                "datatype object P { xs: array(integer(0..3)) }",
+                "interface p use P from q",
+                component(
+                    "variable n: integer(0..3) initial marked state a { on response from m do n := value.xs[1] }",
+                    "outgoing message m with type: P links p",
+                ),
+                "requirement act needs C.n > 1",
+            ),
+            "property 'xs' is an array",
+        ),
+    ],
+    "no-object-variable": [
+        (
+            robot(
+                "datatype object P { x: double }",
+                component("variable v: P " + OK_STATES),
+            ),
+            "variable 'v' has the object type P",
+        ),
+    ],
+    "range": [
+        (
+            robot(component("variable n: integer(0..3) = 7 initial marked state a { transition if n > 1 }")),
+            "7 is outside the range of 'n' (integer(0..3))",
+        ),
+        (
+            robot(
+                component("variable n: integer(0..3) initial marked state a { on response from m do n := -1 }"),
+                "requirement act needs C.n > 1",
+            ),
+            "-1 is outside the range of 'n'",
+        ),
+    ],
+    "implicit-start": [
+        (
+            robot(
+                "datatype enum E from double to { value > 1.0 -> big default -> small }",
+                component("variable e: E initial marked state a { transition if e = small }"),
+            ),
+            "has no initial value: it starts as 'big'",
+        ),
+    ],
     "rule-11": [
         (
             robot(
@@ -118,6 +184,11 @@ CASES = {
         ),
     ],
     "rule-12": [
+        (robot(component(OK_STATES, "service s with request: none, response: none")), "service 's' must link"),
+        (
+            robot(component(OK_STATES, "action x with request: none, response: none, feedback: none")),
+            "action 'x' must link",
+        ),
         (
             robot("datatype object P { x: double }", component(OK_STATES, "outgoing message m with type: P")),
             "must link the ROS interface",
@@ -190,8 +261,10 @@ VALID = {
         component(
             "initial marked state a { on request to s on response from s on error from s "
             "on request to x on response from x on feedback from x on error from x on cancel to x }",
-            "service s with request: none, response: none action x with request: none, response: none, feedback: none",
-        )
+            "service s with request: none, response: none links t "
+            "action x with request: none, response: none, feedback: none links f",
+        ),
+        "interface t use Trigger from std_srvs interface f use Fibonacci from action_tutorials_interfaces",
     ),
     "rule-6": robot(component("variable n: integer initial marked state a { on response from m do n := 1 }")),
     "rule-7": robot(component("variable v: boolean initial marked state a { on response from m do v := value }")),
@@ -214,6 +287,26 @@ VALID = {
     "rule-14": robot("requirement act needs S.idle and S.active"),
     "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
+    "enum-values": robot("datatype enum E from double to { value > 1.0 or value < -1.0 -> big default -> small }"),
+    "no-array": robot(
+        component(
+            "variable xs: array(integer) initial marked state a { on response from m do xs := value }",
+            "outgoing message m with type: array(integer)",
+        )
+    ),
+    "no-object-variable": robot(
+        "datatype object P { x: double }",
+        "interface p use Point from geometry_msgs",
+        component(
+            "variable x: double initial marked state a { on response from m do x := value.x }",
+            "outgoing message m with type: P links p",
+        ),
+    ),
+    "implicit-start": robot(
+        "datatype enum E from double to { value > 1.0 -> big default -> small }",
+        component("variable e: E = small initial marked state a { transition if e = small }"),
+    ),
+    "range": robot(component("variable n: integer(0..3) = 3 initial marked state a { transition if n > 1 }")),
     "constant": robot(component(OK_STATES, "incoming message d with type: double"), "provide d with 1.0 / (2 - 1.5)"),
 }
 
@@ -238,8 +331,21 @@ def test_model_that_keeps_the_rule_passes(check, code: str):
 
 
 def test_every_rule_has_a_test():
-    numbered = {f"rule-{n}" for n in range(1, 16)}
-    assert numbered <= set(CASES) and numbered <= set(VALID)
+    from robosc.language.codes import Code
+
+    not_rules = {Code.IO, Code.SYNTAX, Code.LIMIT, Code.TYPES, Code.ROS}
+    synthesis = {Code.NEVER_ALLOWED, Code.NEVER_HOLDS, Code.UNREACHED_STATE}
+    rules = {code.value for code in Code} - {c.value for c in not_rules | synthesis}
+    assert rules <= set(CASES) and rules <= set(VALID)
+
+
+def test_implicit_enum_start_says_where_it_starts(check):
+    result = check(CASES["implicit-start"][0][0])
+    assert result.ok
+    [found] = result.diagnostics
+    assert found.severity.value == "warning"
+    assert "it starts as 'big', the first value of E (the original tool's start value was unspecified)" in found.message
+    assert found.hint == "say where it starts, as in 'variable e: E = big'"
 
 
 def test_shared_topic_is_only_a_warning(check):
@@ -290,8 +396,19 @@ def test_type_rules(check, statement: str, fragment: str):
 def test_assignment_value_must_fit_variable(check):
     text = robot(component("variable n: integer(0..3) = 7 initial marked state a { on response from m do n := value }"))
     result = check(text)
-    assert "7 is outside the range of variable 'n' (integer(0..3))" in messages(result)
     assert "a value of type boolean does not fit 'n' of type integer(0..3)" in messages(result)
+    # no guard reads n: out of range is a warning (the original accepts it), not an error
+    [out_of_range] = [d for d in result.diagnostics if d.code == "range"]
+    assert out_of_range.severity.value == "warning"
+    assert out_of_range.message.startswith("7 is outside the range of 'n' (integer(0..3)); no guard")
+
+
+def test_out_of_range_constant_is_an_error_only_for_synthesis_variables(check):
+    body = "variable n: integer(0..20) initial marked state a { on response from m do n := -5 }"
+    alone = check(robot(component(body)))
+    assert alone.ok and [d.severity.value for d in alone.diagnostics] == ["warning"]
+    read = check(robot(component(body), "requirement act needs C.n > 1"))
+    assert not read.ok and [d.code for d in read.errors] == ["range"]
 
 
 def test_arithmetic_result_types(check):

@@ -17,11 +17,12 @@ from robosc.synthesis import synthesize, synthesize_explicit
 # machine 2 takes it out. A part made while the buffer is full overflows it.
 SMALL_FACTORY = """
 robot SmallFactory {
+    interface trigger use Trigger from std_srvs
     component M1 {
-        service make with request: none, response: none
+        service make with request: none, response: none links trigger
     }
     component M2 {
-        service take with request: none, response: none
+        service take with request: none, response: none links trigger
     }
     component Buffer {
         behaviour {
@@ -39,7 +40,7 @@ robot SmallFactory {
     }
     // Clearing an overflow needs an operator, who never comes: an overflow blocks.
     component Operator {
-        service clear with request: none, response: none
+        service clear with request: none, response: none links trigger
     }
     requirement clear needs Buffer.empty
 }
@@ -110,9 +111,10 @@ def test_failure_in_the_initial_state_has_an_empty_path():
 
 BLOCKING = """
 robot Blocking {
+    interface trigger use Trigger from std_srvs
     component Robot {
         outgoing message crash with type: none
-        service repair with request: none, response: none
+        service repair with request: none, response: none links trigger
         behaviour {
             initial marked state working {
                 on response from crash goto broken
@@ -141,6 +143,7 @@ def test_responsiveness_lets_uncontrollable_events_happen_in_every_state():
     # closed, the supervisor may never open the door.
     text = """
     robot Pump {
+        interface trigger use Trigger from std_srvs
         component Door {
             incoming message open with type: none
             incoming message close with type: none
@@ -150,7 +153,7 @@ def test_responsiveness_lets_uncontrollable_events_happen_in_every_state():
             }
         }
         component Motor {
-            service run with request: none, response: none
+            service run with request: none, response: none links trigger
             outgoing message overheat with type: none
             behaviour {
                 initial marked state off {

@@ -10,17 +10,26 @@ from robosc.language.diagnostics import Diagnostic, to_json
 
 
 @click.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=True))
+@click.argument("files", nargs=-1, type=click.Path(dir_okay=True))
 @include_option
 @click.option(
     "--format", "output", type=click.Choice(["text", "json"]), default="text", help="How to print diagnostics."
 )
-def check(files: tuple[str, ...], include: tuple[str, ...], output: str) -> None:
+@click.option("--list-codes", is_flag=True, help="List every diagnostic code and what it means, then exit.")
+def check(files: tuple[str, ...], include: tuple[str, ...], output: str, list_codes: bool) -> None:
     """Check RoboSC model files: syntax, references, types and the static rules.
 
     Exits 0 when every file is valid (warnings allowed), 1 when a model has
     errors, 2 when a file cannot be read.
     """
+    if list_codes:
+        from robosc.language.codes import Code
+
+        for code in Code:
+            click.echo(f"{code.value:<20} {code.description}")
+        raise exit_with(EXIT_OK)
+    if not files:
+        raise input_problem("check needs at least one FILE (or --list-codes)")
     diagnostics: list[Diagnostic] = []
     failed = False
     for path in files:

@@ -54,10 +54,11 @@ def _write_package(
         return generate_package(plan, ros, mode, output, page, relative)  # type: ignore[arg-type]
     except RosError as exc:
         from robosc.api import check_file
+        from robosc.language.codes import Code
         from robosc.language.diagnostics import error, render_text
 
         sources = check_file(file, include).sources
-        click.echo(render_text(error(exc.span, str(exc), "ros"), sources), err=True)
+        click.echo(render_text(error(exc.span, str(exc), Code.ROS), sources), err=True)
         raise exit_with(EXIT_MODEL_ERRORS) from None
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None

@@ -8,6 +8,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from enum import Enum
 
+from robosc.language.codes import Code
 from robosc.language.source import SourceFile, Span
 
 
@@ -20,14 +21,13 @@ class Severity(str, Enum):
 class Diagnostic:
     """One finding: where, how bad, what, and (optionally) a hint how to fix it.
 
-    ``code`` names the rule: ``syntax``, ``io``, ``types``, or ``rule-N`` for
-    the static rule N of LANGUAGE.md section 5.
+    ``code`` names the rule (the registry is :class:`robosc.language.codes.Code`).
     """
 
     severity: Severity
     message: str
     span: Span
-    code: str
+    code: Code
     hint: str | None = None
 
     @property
@@ -35,11 +35,11 @@ class Diagnostic:
         return self.severity is Severity.ERROR
 
 
-def error(span: Span, message: str, code: str, hint: str | None = None) -> Diagnostic:
+def error(span: Span, message: str, code: Code, hint: str | None = None) -> Diagnostic:
     return Diagnostic(Severity.ERROR, message, span, code, hint)
 
 
-def warning(span: Span, message: str, code: str, hint: str | None = None) -> Diagnostic:
+def warning(span: Span, message: str, code: Code, hint: str | None = None) -> Diagnostic:
     return Diagnostic(Severity.WARNING, message, span, code, hint)
 
 
@@ -81,7 +81,7 @@ def to_json(diagnostics: Iterable[Diagnostic]) -> str:
                 "end_line": d.span.end_line,
                 "end_column": d.span.end_column,
                 "severity": d.severity.value,
-                "code": d.code,
+                "code": d.code.value,
                 "message": d.message,
                 "hint": d.hint,
             }

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic
 from robosc.language.parser import parse_source
 from robosc.language.resolver import LibraryUnit, Reporter, scope_of
@@ -92,7 +93,7 @@ class LibraryFinder:
         try:
             source = read_source(path)
         except InputError as exc:
-            reporter.error(name.span, f"cannot read library '{name.text}': {exc}", "io")
+            reporter.error(name.span, f"cannot read library '{name.text}': {exc}", Code.IO)
             self._units[name.text] = None
             return None
         self.sources[source.path] = source

@@ -516,3 +516,26 @@ def synthesis_variables(model: Model) -> dict[Variable, Expr]:
             if isinstance(node, VariableRef):
                 found.setdefault(node.variable, node)
     return found
+
+
+@dataclass(frozen=True)
+class SynthesisInput:
+    """Received data that reaches a synthesis variable: ``variable := ...value...``."""
+
+    communication: Communication
+    data: DataRef  # the ``value...`` access
+    variable: Variable
+    transition: ResultTransition
+
+
+def synthesis_inputs(model: Model) -> Iterator[SynthesisInput]:
+    """Every access to received data in an assignment to a variable that takes part in
+    synthesis (the original's "communication input required in synthesis")."""
+    in_synthesis = synthesis_variables(model)
+    for _component, transition in result_transitions(model):
+        for assignment in transition.assignments:
+            if assignment.variable not in in_synthesis:
+                continue
+            for node in walk(assignment.value):
+                if isinstance(node, DataRef):
+                    yield SynthesisInput(transition.communication, node, assignment.variable, transition)

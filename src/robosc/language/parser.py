@@ -18,6 +18,7 @@ if lark.__version__.startswith("0."):  # pragma: no cover - an environment probl
     )
 
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.source import SourceFile, Span
 from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
@@ -118,7 +119,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
         message = "unexpected end of file"
         if expected:
             message += f", expected {_describe_expected(set(expected), parser)}"
-        return error(_point(path, text, line, column, len(text), 0), message, "syntax")
+        return error(_point(path, text, line, column, len(text), 0), message, Code.SYNTAX)
     if isinstance(exc, UnexpectedToken):
         token = exc.token
         shown = str(token).replace("\n", " ")
@@ -126,7 +127,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
             shown = shown[:27] + "..."
         span = _point(path, text, exc.line, exc.column, token.start_pos or 0, max(1, len(str(token))))
         if text.startswith("/*", token.start_pos or 0):
-            return error(span, "unterminated comment (missing '*/')", "syntax")
+            return error(span, "unterminated comment (missing '*/')", Code.SYNTAX)
         if token.type in parser.lexer_conf.terminals_by_name and token.type != "NAME":
             what = f"'{shown}'"
             hint = (
@@ -137,21 +138,21 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
         else:
             what, hint = f"'{shown}'", None
         return error(
-            span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", "syntax", hint
+            span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", Code.SYNTAX, hint
         )
     assert isinstance(exc, UnexpectedCharacters)
     pos = exc.pos_in_stream or 0
     char = text[pos] if pos < len(text) else ""
     span = _point(path, text, exc.line, exc.column, pos)
     if char in "\"'":
-        return error(span, "unterminated string", "syntax")
+        return error(span, "unterminated string", Code.SYNTAX)
     if text.startswith("/*", pos):
-        return error(span, "unterminated comment (missing '*/')", "syntax")
+        return error(span, "unterminated comment (missing '*/')", Code.SYNTAX)
     shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
     message = f"unexpected character {shown}"
     if exc.allowed:
         message += f", expected {_describe_expected(set(exc.allowed), parser)}"
-    return error(span, message, "syntax")
+    return error(span, message, Code.SYNTAX)
 
 
 def parse_text(text: str, path: str = "<text>") -> ParseResult:
@@ -182,7 +183,7 @@ def _parse(text: str, path: str) -> ParseResult:
     try:
         result = builder.build(tree)
     except SyntaxProblem as problem:
-        return ParseResult(None, (error(problem.span, problem.message, "syntax", problem.hint),))
+        return ParseResult(None, (error(problem.span, problem.message, Code.SYNTAX, problem.hint),))
     return ParseResult(result, ())
 
 

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from robosc.language import model as m
 
 
-def domain(variable: m.Variable) -> tuple[object, ...]:
+def domain(variable: m.Variable) -> Sequence[object]:
     t = variable.type
     if isinstance(t, m.EnumType):
         return tuple(t.values)
@@ -13,13 +15,14 @@ def domain(variable: m.Variable) -> tuple[object, ...]:
         return (False, True)
     if isinstance(t, m.BasicType) and t.is_ranged_integer:
         assert t.low is not None and t.high is not None
-        return tuple(range(t.low, t.high + 1))
+        return range(t.low, t.high + 1)
     raise ValueError(f"variable '{variable.name}' of type {t} has no finite domain")
 
 
 def initial_value(variable: m.Variable) -> object:
-    """The given initial value, or the type's default: false; 0, or the range's low
-    end when 0 is outside it; the enum's first value."""
+    """The given initial value, or the type's default (SEMANTICS.md section 2): false;
+    for an integer the value of its range closest to 0, as CIF does (``integer(-5..-2)``
+    starts at -2); the enum's first declared value."""
     values = domain(variable)
     if variable.initial is not None:
         e = variable.initial
@@ -29,6 +32,7 @@ def initial_value(variable: m.Variable) -> object:
             return e.value
         if isinstance(e, m.Unary) and isinstance(e.operand, m.Literal) and isinstance(e.operand.value, int):
             return -e.operand.value
-    if isinstance(variable.type, m.BasicType) and variable.type.kind is m.BasicKind.INTEGER:
-        return 0 if 0 in values else values[0]
+    t = variable.type
+    if isinstance(t, m.BasicType) and t.low is not None and t.high is not None:
+        return t.low if t.low > 0 else min(t.high, 0)
     return values[0]

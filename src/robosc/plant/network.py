@@ -8,7 +8,7 @@ construction, or added by synthesis -- is an ordinary model expression.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 
@@ -97,7 +97,7 @@ class Network:
     events: tuple[Event, ...]
     automata: tuple[Automaton, ...]
     variables: tuple[m.Variable, ...]
-    domains: dict[m.Variable, tuple[object, ...]] = field(repr=False)
+    domains: dict[m.Variable, Sequence[object]] = field(repr=False)
     initial_values: dict[m.Variable, object] = field(repr=False)
     requirements: tuple[Requirement, ...] = ()
 

@@ -352,8 +352,10 @@ class _Planner:
         condition already requires it (``gated``), or it is taken from every state."""
         lines: list[str] = []
         first = True
-        bodies = [[*assigns, *([f"self.{field} = {target!r}"] if target is not None and target != source else [])]
-                  for source, _, target, assigns in branches]
+        bodies = [
+            [*assigns, *([f"self.{field} = {target!r}"] if target is not None and target != source else [])]
+            for source, _, target, assigns in branches
+        ]
         if gated and bodies and all(body == bodies[0] for body in bodies):
             return bodies[0]  # every way the event can happen here does the same
         for source, guard, target, assigns in branches:

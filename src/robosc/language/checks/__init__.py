@@ -13,11 +13,15 @@ from robosc.language.checks import (
     constant_values,
     enum_default,
     enum_source,
+    enum_values,
+    implicit_start,
     initial_state,
     integer_range,
     interface_links,
     marked_reachable,
+    no_array,
     no_data_to_request,
+    object_variables,
     one_behaviour,
     own_variables,
     provide_direction,
@@ -26,6 +30,7 @@ from robosc.language.checks import (
     synthesis_types,
     topic_names,
     unique_names,
+    variable_ranges,
 )
 from robosc.language.diagnostics import Diagnostic
 from robosc.language.model import Model
@@ -49,6 +54,11 @@ CHECKS: tuple[Check, ...] = (
     topic_names.check,  # rule 15
     enum_default.check,  # section 4: exactly one default rule per enum
     constant_values.check,  # a constant divisor of zero can never be computed
+    enum_values.check,  # an enum value is named by one rule
+    no_array.check,  # array data cannot reach synthesis
+    object_variables.check,  # no variable of object type
+    variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
+    implicit_start.check,  # warning: an enum variable read with no initial value
 )
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import (
     Binary,
@@ -78,6 +79,6 @@ def check(model: Model) -> Iterator[Diagnostic]:
                 yield error(
                     node.span,
                     "division by zero: this can never be computed",
-                    "constant",
+                    Code.CONSTANT,
                     "divide by something that is not zero",
                 )

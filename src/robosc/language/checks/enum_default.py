@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model
 
@@ -15,8 +16,8 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 enum.span,
                 f"enum '{enum.name}' has no default rule",
-                "enum-default",
+                Code.ENUM_DEFAULT,
                 "add 'default -> <value>' for data that no rule matches",
             )
         for extra in defaults[1:]:
-            yield error(extra.span, f"enum '{enum.name}' has more than one default rule", "enum-default")
+            yield error(extra.span, f"enum '{enum.name}' has more than one default rule", Code.ENUM_DEFAULT)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import EnumType, Model
 
@@ -14,5 +15,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 enum.span,
                 f"enum '{enum.name}' is converted from enum '{enum.source.name}'; convert from the raw data instead",
-                "rule-11",
+                Code.ENUM_SOURCE,
             )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model
 
@@ -16,12 +17,12 @@ def check(model: Model) -> Iterator[Diagnostic]:
                 yield error(
                     automaton.span,
                     f"the behaviour of '{component.name}' has no initial state",
-                    "rule-2",
+                    Code.INITIAL_STATE,
                     "mark one state 'initial', as in 'initial marked state idle { ... }'",
                 )
             for extra in initial[1:]:
                 yield error(
                     extra.span,
                     f"'{component.name}' has more than one initial state ('{initial[0].name}' and '{extra.name}')",
-                    "rule-2",
+                    Code.INITIAL_STATE,
                 )

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Automaton, Model, State
 
@@ -28,7 +29,7 @@ def check(model: Model) -> Iterator[Diagnostic]:
                 yield error(
                     automaton.span,
                     f"no state of '{component.name}' is marked, so it can never finish",
-                    "rule-3",
+                    Code.MARKED_REACHABLE,
                     "mark the states where the component is at rest, as in 'initial marked state idle'",
                 )
                 continue
@@ -45,5 +46,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
                     yield error(
                         state.span,
                         f"state '{component.name}.{state.name}' is reachable but cannot reach a marked state",
-                        "rule-3",
+                        Code.MARKED_REACHABLE,
                     )

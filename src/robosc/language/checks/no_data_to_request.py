@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Direction, Message, Model, ResultKind, result_transitions
 
@@ -21,5 +22,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 transition.assignments[0].span,
                 f"no assignment on a request to '{communication.name}': it sends data to the node and receives none",
-                "rule-6",
+                Code.NO_DATA_TO_REQUEST,
             )

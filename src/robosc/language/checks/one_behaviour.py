@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model
 
@@ -14,6 +15,6 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 extra.span,
                 f"component '{component.name}' has more than one behaviour",
-                "rule-4",
+                Code.ONE_BEHAVIOUR,
                 "put all states, variables and transitions in one 'behaviour { ... }'",
             )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model, result_transitions
 
@@ -17,5 +18,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
                     assignment.span,
                     f"'{component.name}' cannot assign '{variable.owner}.{variable.name}': "
                     "a transition assigns only its own component's variables",
-                    "rule-7",
+                    Code.OWN_VARIABLES,
                 )

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Direction, Message, Model
 
@@ -17,5 +18,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
                 provide.span,
                 f"cannot provide data for '{communication.name}': it is an outgoing message, "
                 "which the node publishes and the controller only receives",
-                "rule-8",
+                Code.PROVIDE_DIRECTION,
             )

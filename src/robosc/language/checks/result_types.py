@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Action, Communication, Direction, Message, Model, ResultKind, result_transitions
 
@@ -27,5 +28,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 transition.span,
                 f"'{transition.result.value}' does not fit '{transition.communication.name}': {explanation}",
-                "rule-5",
+                Code.RESULT_TYPES,
             )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, warning
 from robosc.language.model import Direction, Message, Model
 
@@ -18,5 +19,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield warning(
                 communication.span,
                 f"'{communication.owner}' and '{first.owner}' both publish to topic '{communication.ros_name}'",
-                "rule-13",
+                Code.SHARED_TOPICS,
             )

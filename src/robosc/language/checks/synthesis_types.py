@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import BasicKind, BasicType, EnumType, ErrorType, Model, synthesis_variables
 
@@ -19,6 +20,6 @@ def check(model: Model) -> Iterator[Diagnostic]:
             variable.span,
             f"variable '{variable.name}' of type {t} takes part in synthesis (used at {use.span}); "
             "only booleans, ranged integers and enums can",
-            "rule-10",
+            Code.SYNTHESIS_TYPES,
             "use an enum that turns the data into a few named values",
         )

@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model
 
@@ -42,5 +43,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             yield error(
                 communication.span,
                 f"'{communication.ros_name}' is not a valid ROS name for '{communication.name}': {reason}",
-                "rule-15",
+                Code.TOPIC_NAMES,
             )

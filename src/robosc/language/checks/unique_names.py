@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from typing import Protocol
 
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.model import Model, ObjectType, State
 from robosc.language.source import Span
@@ -23,15 +24,25 @@ class Named(Protocol):
 def duplicates(kind: str, items: Iterable[Named], where: str = "") -> Iterator[Diagnostic]:
     first: dict[str, Named] = {}
     for item in items:
-        if item.name in first:
-            earlier = first[item.name].span
+        key = item.name.lower()
+        if key not in first:
+            first[key] = item
+            continue
+        earlier = first[key]
+        if earlier.name == item.name:
             yield error(
                 item.span,
-                f"{kind} '{item.name}'{where} is defined more than once (first at {earlier})",
-                "rule-1",
+                f"{kind} '{item.name}'{where} is defined more than once (first at {earlier.span})",
+                Code.UNIQUE_NAMES,
             )
         else:
-            first[item.name] = item
+            yield error(
+                item.span,
+                f"{kind} '{item.name}'{where} differs from '{earlier.name}' ({earlier.span}) only in case; "
+                "names are compared without case (as in the original tool)",
+                Code.UNIQUE_NAMES,
+                "choose a name that differs in more than case",
+            )
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
@@ -50,12 +61,12 @@ def check(model: Model) -> Iterator[Diagnostic]:
             states += automaton.states
     values = [value for enum in model.enums for value in enum.values]
     yield from duplicates("enum value", values)
-    state_names = {state.name: state for state in states}
+    state_names = {state.name.lower(): state for state in states}
     for value in values:
-        if value.name in state_names:
-            state = state_names[value.name]
+        if value.name.lower() in state_names:
+            state = state_names[value.name.lower()]
             yield error(
                 value.span,
                 f"enum value '{value.name}' has the name of state '{state.owner}.{state.name}' ({state.span})",
-                "rule-1",
+                Code.UNIQUE_NAMES,
             )

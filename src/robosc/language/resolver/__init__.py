@@ -12,6 +12,7 @@ from typing import Protocol
 
 from robosc.language import model as m
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic
 from robosc.language.resolver.components import BehaviourResolver, declare
 from robosc.language.resolver.expressions import ExpressionResolver
@@ -124,7 +125,7 @@ class _Resolver:
                 syntax.component.span,
                 f"'{syntax.component.text}' is itself imported in library '{syntax.library.text}'; "
                 "import it from the library that defines it",
-                "rule-14",
+                Code.UNKNOWN_NAME,
             )
             return failed
         tables = declare(found, local, unit.scope)

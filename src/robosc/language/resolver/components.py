@@ -8,6 +8,7 @@ from collections.abc import Callable
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
+from robosc.language.codes import Code
 from robosc.language.resolver.expressions import ExprContext, ExpressionResolver
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.scope import FileScope
@@ -59,10 +60,10 @@ def _variable(syntax: s.VariableSyntax, owner: str, scope: FileScope, constants:
     if syntax.initial is not None:
         context = ExprContext(None, None, "an initial value")
         initial = constants.expr(syntax.initial, context)
-        check_value_fits(scope.reporter, initial, data_type, f"variable '{syntax.name.text}'")
+        check_value_fits(scope.reporter, initial, data_type, f"variable '{syntax.name.text}'", ranges=False)
         if not _is_constant(initial):
             scope.reporter.error(
-                initial.span, "the initial value of a variable must be a literal or an enum value", "types"
+                initial.span, "the initial value of a variable must be a literal or an enum value", Code.TYPES
             )
     return m.Variable(syntax.name.text, owner, data_type, initial, syntax.span)
 
@@ -73,23 +74,25 @@ def _is_constant(expr: m.Expr) -> bool:
     return isinstance(expr, (m.Literal, m.EnumLiteral, m.Invalid))
 
 
-def check_value_fits(reporter: Reporter, value: m.Expr, target: m.DataType, what: str) -> None:
-    """An assigned, initial or provided value must fit its target's type (and an integer's range)."""
+def check_value_fits(reporter: Reporter, value: m.Expr, target: m.DataType, what: str, ranges: bool = True) -> None:
+    """An assigned, initial or provided value must fit its target's type (and, with ``ranges``, a
+    constant must lie in an integer's range; for variables the checks decide that, see
+    :mod:`robosc.language.checks.variable_ranges`)."""
     if not t.fits(value.type, target):
-        reporter.error(value.span, f"a value of type {value.type} does not fit {what} of type {target}", "types")
+        reporter.error(value.span, f"a value of type {value.type} does not fit {what} of type {target}", Code.TYPES)
         return
-    constant = _constant_int(value)
-    if isinstance(target, m.BasicType) and target.is_ranged_integer and constant is not None:
+    constant = constant_int(value)
+    if ranges and isinstance(target, m.BasicType) and target.is_ranged_integer and constant is not None:
         assert target.low is not None and target.high is not None
         if not target.low <= constant <= target.high:
-            reporter.error(value.span, f"{constant} is outside the range of {what} ({target})", "types")
+            reporter.error(value.span, f"{constant} is outside the range of {what} ({target})", Code.TYPES)
 
 
-def _constant_int(expr: m.Expr) -> int | None:
+def constant_int(expr: m.Expr) -> int | None:
     if isinstance(expr, m.Literal) and isinstance(expr.value, int) and not isinstance(expr.value, bool):
         return expr.value
     if isinstance(expr, m.Unary) and expr.op == "-":
-        inner = _constant_int(expr.operand)
+        inner = constant_int(expr.operand)
         return None if inner is None else -inner
     return None
 
@@ -193,8 +196,8 @@ class BehaviourResolver:
         value = self.expressions.expr(syntax.value, context)
         if not isinstance(target, m.VariableRef):
             if not isinstance(target, m.Invalid):
-                self.reporter.error(target.span, "only a variable can be assigned", "types")
+                self.reporter.error(target.span, "only a variable can be assigned", Code.TYPES)
             placeholder = m.Variable("<invalid>", self.tables.name, m.ERROR, None, syntax.target.span)
             return m.Assignment(placeholder, (), value, syntax.span)
-        check_value_fits(self.reporter, value, target.type, f"'{target.variable.name}'")
+        check_value_fits(self.reporter, value, target.type, f"'{target.variable.name}'", ranges=False)
         return m.Assignment(target.variable, target.steps, value, syntax.span)

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
+from robosc.language.codes import Code
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
@@ -43,7 +44,7 @@ class ExpressionResolver:
         """An expression that must be boolean (a guard, a requirement, a provide condition)."""
         expr = self.expr(syntax, context)
         if not t.is_error(expr.type) and not t.is_boolean(expr.type):
-            self.reporter.error(expr.span, f"{what} must be a boolean expression, not {expr.type}", "types")
+            self.reporter.error(expr.span, f"{what} must be a boolean expression, not {expr.type}", Code.TYPES)
         return expr
 
     def expr(self, syntax: s.Expr, context: ExprContext) -> m.Expr:
@@ -70,7 +71,7 @@ class ExpressionResolver:
 
     def _checked(self, result: m.DataType | str, span: Span) -> m.DataType:
         if isinstance(result, str):
-            self.reporter.error(span, result, "types")
+            self.reporter.error(span, result, Code.TYPES)
             return m.ERROR
         return result
 
@@ -89,7 +90,7 @@ class ExpressionResolver:
         if name in self.enum_values:
             enum, value = self.enum_values[name]
             if steps:
-                self.reporter.error(steps[0].span, f"enum value '{name}' has no properties", "types")
+                self.reporter.error(steps[0].span, f"enum value '{name}' has no properties", Code.TYPES)
                 return m.Invalid(syntax.span)
             return m.EnumLiteral(enum, value, syntax.span)
         candidates = list(self.component_names()) + list(self.enum_values)
@@ -104,7 +105,7 @@ class ExpressionResolver:
             self.reporter.error(
                 syntax.span,
                 reason,
-                "types",
+                Code.TYPES,
                 "'value' is the received data: use it in enum rules and in 'do' of transitions that receive data",
             )
             return m.Invalid(syntax.span)
@@ -115,20 +116,20 @@ class ExpressionResolver:
         if isinstance(component, str):
             if not component:  # its import failed, which is reported already
                 return m.Invalid(syntax.span)
-            self.reporter.error(syntax.head.span if syntax.head else syntax.span, component, "rule-14")
+            self.reporter.error(syntax.head.span if syntax.head else syntax.span, component, Code.UNKNOWN_NAME)
             return m.Invalid(syntax.span)
         if not syntax.steps or not isinstance(syntax.steps[0], s.MemberStep):
             self.reporter.error(
                 syntax.span,
                 f"'{name}' is a component: name one of its states or variables, as in '{name}.<state>'",
-                "types",
+                Code.TYPES,
             )
             return m.Invalid(syntax.span)
         member = syntax.steps[0].name
         rest = syntax.steps[1:]
         if member.text in component.states:
             if rest:
-                self.reporter.error(rest[0].span, f"state '{name}.{member.text}' has no properties", "types")
+                self.reporter.error(rest[0].span, f"state '{name}.{member.text}' has no properties", Code.TYPES)
                 return m.Invalid(syntax.span)
             return m.StateRef(component.states[member.text], syntax.span)
         if member.text in component.variables:
@@ -154,13 +155,13 @@ class ExpressionResolver:
                 return tuple(resolved), data_type
             if isinstance(step, s.IndexStep):
                 if not isinstance(data_type, m.ArrayType):
-                    self.reporter.error(step.span, f"cannot index [{step.index}] into {data_type}", "types")
+                    self.reporter.error(step.span, f"cannot index [{step.index}] into {data_type}", Code.TYPES)
                     return tuple(resolved), m.ERROR
                 resolved.append(m.IndexStep(step.index))
                 data_type = data_type.element
                 continue
             if not isinstance(data_type, m.ObjectType):
-                self.reporter.error(step.span, f"{data_type} has no property '{step.name.text}'", "types")
+                self.reporter.error(step.span, f"{data_type} has no property '{step.name.text}'", Code.TYPES)
                 return tuple(resolved), m.ERROR
             prop = data_type.property(step.name.text)
             if prop is None:

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 from robosc.language import model as m
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.resolver.reporter import Reporter
 
 if TYPE_CHECKING:
@@ -62,7 +63,9 @@ class FileScope:
             kind = m.BasicKind(syntax.kind)
             if syntax.low is not None and syntax.high is not None and syntax.low > syntax.high:
                 self.reporter.error(
-                    syntax.span, f"empty range {syntax.low}..{syntax.high}: the low end is above the high end", "types"
+                    syntax.span,
+                    f"empty range {syntax.low}..{syntax.high}: the low end is above the high end",
+                    Code.TYPES,
                 )
             return m.BasicType(kind, syntax.low, syntax.high)
         if isinstance(syntax, s.ArrayTypeSyntax):
@@ -78,7 +81,7 @@ class FileScope:
         if key in self._built:
             return self._built[key]
         if key in self._building:
-            self.reporter.error(syntax.name.span, f"data type '{syntax.name.text}' contains itself", "types")
+            self.reporter.error(syntax.name.span, f"data type '{syntax.name.text}' contains itself", Code.TYPES)
             return m.ERROR
         self._building.add(key)
         built: m.ObjectType | m.EnumType

@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 from robosc.language import model as m
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.resolver.components import check_value_fits
 from robosc.language.resolver.expressions import ExprContext, ExpressionResolver
 from robosc.language.resolver.reporter import Reporter
@@ -60,7 +61,7 @@ class StatementResolver:
             return value
         if not isinstance(target, m.ObjectType):
             if not isinstance(target, m.ErrorType):
-                self.reporter.error(syntax.span, f"{what} is of type {target}, not an object", "types")
+                self.reporter.error(syntax.span, f"{what} is of type {target}, not an object", Code.TYPES)
             return m.ObjectValue(target, (), syntax.span)
         fields = []
         for field in syntax.fields:
