@@ -103,3 +103,22 @@ def test_fmt_syntax_error_exits_one(tmp_path: Path, capsys):
     model.write_text("robot R {")
     assert main(["fmt", str(model)]) == 1
     assert "m.rscd:1:10: error: unexpected end of file" in capsys.readouterr().err
+
+
+def test_synthesize_explains_added_conditions_and_warns(tmp_path: Path):
+    from test_synthesis import GRAB
+
+    model = tmp_path / "grab.rscd"
+    model.write_text(GRAB)
+    result = run("synthesize", str(model))
+    assert result.returncode == 0, result.stderr
+    assert "grab.c_trigger (never allowed):" in result.stdout
+    assert "1. grab.u_error  ->  grab.error, Grabber.grabbing" in result.stdout
+    assert f"{model}:5:9: warning: synthesis never allows 'grab.c_trigger'" in result.stderr
+    assert "    hint: run 'robosc synthesize'" in result.stderr
+    data = json.loads(run("synthesize", "--json", str(model)).stdout)
+    grab = next(e for e in data["events"] if e["event"] == "grab.c_trigger")
+    assert grab["added"] == "false" and grab["why"]["never"] is True
+    assert [s["event"] for s in grab["why"]["consequence"]["path"]] == ["grab.u_error"]
+    assert {w["code"] for w in data["warnings"]} == {"never-allowed", "never-holds", "unreached-state"}
+    assert all(w["severity"] == "warning" and w["line"] > 0 for w in data["warnings"])

@@ -214,8 +214,17 @@ def test_a_malformed_message_never_stops_the_node() -> None:
 # ---- parameters -------------------------------------------------------------------------------
 @pytest.mark.parametrize(
     ("name", "value"),
-    [("rate", 0.0), ("rate", float("nan")), ("rate", -5.0), ("rate", "fast"), ("view_port", 70000),
-     ("seed", -7), ("qos_depth", 0), ("server_timeout", float("inf")), ("publish_state", "yes")],
+    [
+        ("rate", 0.0),
+        ("rate", float("nan")),
+        ("rate", -5.0),
+        ("rate", "fast"),
+        ("view_port", 70000),
+        ("seed", -7),
+        ("qos_depth", 0),
+        ("server_timeout", float("inf")),
+        ("publish_state", "yes"),
+    ],
 )
 def test_a_bad_parameter_is_refused_with_a_log_line(name: str, value: Any) -> None:
     node = FakeNode("examples/maze_solver.rscd", "controller", **{name: value})

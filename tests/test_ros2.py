@@ -548,7 +548,9 @@ def test_a_goal_while_the_server_is_absent_never_hangs_the_node(ros2: Ros2, tmp_
     seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
     _wait_subscribed(ros2, seen)
     seen.publish(Pose())
-    assert ros2.spin_until(lambda: json.loads(states[-1].data)["communications"]["pick"] == "executing" if states else False, 5)
+    assert ros2.spin_until(
+        lambda: json.loads(states[-1].data)["communications"]["pick"] == "executing" if states else False, 5
+    )
     started = time.monotonic()
     # the pick fails once the timeout passes; the supervisor resets and starts it again
     assert ros2.spin_until(lambda: "action /arm/pick: no server after 1.0 s" in ros2.processes.output(), 5)

@@ -279,3 +279,67 @@ def test_piped_table_keeps_each_condition_on_one_line(capsys):
     assert main(["synthesize", str(EXAMPLES / "maze_solver.rscd")]) == 0
     out = capsys.readouterr().out
     assert "Platform.ready and Distance.front = wall_front" in out
+
+
+# ---- why synthesis added a condition ---------------------------------------------------
+
+GRAB = """
+robot Grab {
+    interface grab_srv use Trigger from std_srvs
+    component Grabber {
+        service grab with request: none, response: none links grab_srv
+        incoming message wave with type: none
+        behaviour {
+            initial marked state idle {
+                on request to grab goto grabbing
+                on request to wave
+            }
+            state grabbing { on response from grab goto idle }
+        }
+    }
+    requirement wave needs Grabber.grabbing and Grabber.idle
+}
+"""
+
+
+def test_added_guard_is_explained_by_a_shortest_run_and_what_would_follow():
+    result = synthesize_model(load(SMALL_FACTORY))
+    why = result.why("make.c_trigger")
+    assert why is not None and not why.never
+    assert [s.event.name for s in why.path] == ["make.c_trigger", "make.u_response", "make.c_reset"]
+    assert why.state == "Buffer.full" and why.after == "make.wait, Buffer.full"
+    assert [s.event.name for s in why.consequence.path] == ["make.u_response"]
+    assert why.consequence.path[-1].state == "make.ready, Buffer.overflow"
+    assert "would block" in why.consequence.reason and "Buffer.overflow" in why.consequence.reason
+    # the run is one of the controlled system, and its last state really disables make
+    state = result.state({"Buffer": "full"})
+    assert result.controlled(state) and not result.allows("make.c_trigger", state)
+    assert result.why("take.c_trigger") is None  # nothing added to take
+
+
+def test_event_synthesis_never_allows_is_a_warning_with_its_reason():
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    result = synthesize_model(load(GRAB))
+    why = result.why("grab.c_trigger")
+    assert why is not None and why.never and why.path == ()
+    assert [s.event.name for s in why.consequence.path] == ["grab.u_error"]
+    assert "stuck outside a marked state: Grabber.grabbing, grab.error" in why.consequence.reason
+    found = {(d.code.value, d.span.line) for d in synthesis_warnings(result)}
+    assert ("never-allowed", 5) in found  # the service's declaration
+    assert ("never-holds", 15) in found  # Grabber.grabbing and Grabber.idle
+    assert ("unreached-state", 12) in found  # grabbing: grab is never allowed
+    assert all(d.severity.value == "warning" for d in synthesis_warnings(result))
+
+
+def test_unreached_states_say_whether_the_supervisor_avoids_them():
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    # the supervisor keeps the buffer from overflowing: that is what it is for, and it says so
+    [avoided] = synthesis_warnings(synthesize_model(load(SMALL_FACTORY)))
+    assert avoided.message == (
+        "no controlled run reaches state 'Buffer.overflow': the supervisor keeps the robot out of it"
+    )
+    unreachable = SMALL_FACTORY.replace("on response from make goto overflow", "on response from make")
+    [never] = synthesis_warnings(synthesize_model(load(unreachable)))
+    assert never.message == "state 'Buffer.overflow' can never be reached: no run of the model leads there"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 from typing import Any
 
@@ -9,11 +10,34 @@ import click
 
 from robosc.api import SynthesisResult, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot
+from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
+from robosc.synthesis.result import Explanation, Restriction
+from robosc.synthesis.warnings import synthesis_warnings
 
 
-def as_json(result: SynthesisResult) -> dict[str, Any]:
+def _explanation(explanation: Explanation) -> dict[str, Any]:
+    return {
+        "reason": explanation.reason,
+        "initial_state": explanation.initial_state,
+        "path": [{"event": s.event.name, "state": s.state} for s in explanation.path],
+    }
+
+
+def _why(restriction: Restriction | None) -> dict[str, Any] | None:
+    if restriction is None:
+        return None
+    return {
+        "never": restriction.never,
+        "path": [{"event": s.event.name, "state": s.state} for s in restriction.path],
+        "state": restriction.state,
+        "after": restriction.after,
+        "consequence": _explanation(restriction.consequence),
+    }
+
+
+def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -> dict[str, Any]:
     explanation = result.explanation
     return {
         "model": result.network.model.name,
@@ -27,17 +51,42 @@ def as_json(result: SynthesisResult) -> dict[str, Any]:
                 "kind": g.event.kind.value,
                 "required": render(g.required) if g.required is not None else None,
                 "added": render(g.added) if g.added is not None else None,
+                "why": _why(result.why(g.event)) if g.added is not None else None,
             }
             for g in result.guards
         ],
-        "explanation": None
-        if explanation is None
-        else {
-            "reason": explanation.reason,
-            "initial_state": explanation.initial_state,
-            "path": [{"event": s.event.name, "state": s.state} for s in explanation.path],
-        },
+        "explanation": None if explanation is None else _explanation(explanation),
+        "warnings": json.loads(to_json(warnings or [])),
     }
+
+
+def why_lines(restriction: Restriction) -> list[str]:
+    """The explanation of one added condition, as indented lines."""
+    name = restriction.event.name
+    lines = [f"{name}{' (never allowed)' if restriction.never else ''}:"]
+    if restriction.path:
+        lines.append("    a shortest run to a state where synthesis disables it:")
+        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.path, 1)]
+    else:
+        lines.append("    synthesis disables it in the initial state")
+    lines.append(f"    there [{restriction.state}], '{name}' would lead to [{restriction.after}]")
+    if restriction.consequence.path:
+        lines.append("    from there, events the supervisor cannot prevent:")
+        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.consequence.path, 1)]
+    lines.append(f"    so: {restriction.consequence.reason}")
+    return lines
+
+
+def print_warnings(warnings: list[Diagnostic]) -> None:
+    from robosc.api import InputError
+    from robosc.language.loader import read_source
+
+    sources = {}
+    for path in {d.span.path for d in warnings}:
+        with contextlib.suppress(InputError):
+            sources[path] = read_source(path)
+    for diagnostic in warnings:
+        click.echo(render_text(diagnostic, sources), err=True)
 
 
 def print_result(result: SynthesisResult) -> None:
@@ -72,8 +121,14 @@ def print_result(result: SynthesisResult) -> None:
         added = render(guard.added) if guard.added is not None else "-"
         table.add_row(guard.event.name, required, f"[bold]{added}[/]" if guard.added is not None else added)
     console.print(table)
+    restrictions = [r for r in (result.why(g.event) for g in result.added_guards) if r is not None]
+    if restrictions:
+        console.print("why synthesis added these conditions:")
+        for restriction in restrictions:
+            for line in why_lines(restriction):
+                console.print("  " + line, markup=False, soft_wrap=True)
     console.print(
-        f"{result.reachable_states} reachable states in the controlled system; "
+        f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled system; "
         f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
         f"{result.seconds * 1000:.1f} ms"
     )
@@ -93,8 +148,10 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()
+    warnings = synthesis_warnings(result)
     if as_json_output:
-        click.echo(json.dumps(as_json(result), indent=2))
+        click.echo(json.dumps(as_json(result, warnings), indent=2))
     else:
         print_result(result)
+        print_warnings(warnings)
     raise exit_with(EXIT_OK if result.ok else EXIT_MODEL_ERRORS)

@@ -13,6 +13,7 @@ from typing import Any
 _EXPORTS = {
     "EventGuard": "robosc.synthesis.result",
     "Explanation": "robosc.synthesis.result",
+    "Restriction": "robosc.synthesis.result",
     "Step": "robosc.synthesis.result",
     "SynthesisResult": "robosc.synthesis.result",
     "NetworkState": "robosc.synthesis.state",

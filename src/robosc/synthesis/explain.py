@@ -1,5 +1,7 @@
-"""Why synthesis failed: the requirement or the blocking situation behind it, and a
-shortest sequence of uncontrollable events from the initial state that leads there."""
+"""Why a state must be avoided: the requirement or the blocking situation behind it, and a
+shortest sequence of uncontrollable events from that state that leads there. Used for a
+failed synthesis (from the initial state) and for an added guard (from the state the
+event would lead to, see :mod:`robosc.synthesis.why`)."""
 
 from __future__ import annotations
 
@@ -12,7 +14,8 @@ from robosc.synthesis.result import Explanation, Step
 from robosc.synthesis.state import NetworkState, describe
 
 
-def _pick(fp: Any, states: BDD) -> NetworkState:
+def pick(fp: Any, states: BDD) -> NetworkState:
+    """One state of ``states`` (the BDD's choice, so the same every run)."""
     enc = fp.enc
     assignment = enc.bdd.pick(states, care_vars=enc.x_vars) or {}
     decoded = enc.decode(assignment)
@@ -23,6 +26,12 @@ def _pick(fp: Any, states: BDD) -> NetworkState:
 
 
 def explain(fp: Any) -> Explanation:
+    """Why the initial state is outside the controlled behaviour (synthesis failed)."""
+    return explain_from(fp, fp.initial)
+
+
+def explain_from(fp: Any, start: BDD) -> Explanation:
+    """Why the bad state ``start`` must be avoided."""
     enc = fp.enc
     network = enc.network
     uncontrollable = network.uncontrollable
@@ -30,8 +39,8 @@ def explain(fp: Any) -> Explanation:
     for event in uncontrollable:
         blocked_at |= enc.pre(fp.relation[event], fp.bad)
     sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
-    layers = [fp.initial]
-    seen = fp.initial
+    layers = [start]
+    seen = start
     while (layers[-1] & sources) == enc.false:
         image = enc.false
         for event in uncontrollable:
@@ -45,7 +54,7 @@ def explain(fp: Any) -> Explanation:
     if target == enc.false:  # cannot happen when the initial state is bad; be safe anyway
         target = layers[-1]
     # walk back to the initial state, one uncontrollable event per layer
-    here = _pick(fp, target)
+    here = pick(fp, target)
     here_bdd = fp.state(here)
     steps: list[Step] = []
     for layer in reversed(layers[:-1]):
@@ -53,12 +62,12 @@ def explain(fp: Any) -> Explanation:
             before = layer & enc.pre(fp.relation[event], here_bdd)
             if before != enc.false:
                 steps.append(Step(event, describe(network, here)))
-                here = _pick(fp, before)
+                here = pick(fp, before)
                 here_bdd = fp.state(here)
                 break
     steps.reverse()
-    last = _pick(fp, target)
-    return Explanation(_reason(fp, last), describe(network, _pick(fp, fp.initial)), tuple(steps))
+    last = pick(fp, target)
+    return Explanation(_reason(fp, last), describe(network, pick(fp, start)), tuple(steps))
 
 
 def _reason(fp: Any, state: NetworkState) -> str:
@@ -77,11 +86,12 @@ def _reason(fp: Any, state: NetworkState) -> str:
                     "and it cannot"
                 )
     unmarked = [
-        f"{a.name}.{loc.name}"
+        (a.kind is not AutomatonKind.COMPONENT, f"{a.name}.{loc.name}")
         for a, loc in zip(network.automata, state.locations, strict=True)
         if not loc.marked and a.kind is not AutomatonKind.DATA
     ]
-    stuck = f" (not in a marked state: {', '.join(unmarked)})" if unmarked else ""
+    names = [name for _, name in sorted(unmarked, key=lambda pair: pair[0])]
+    stuck = f" (stuck outside a marked state: {', '.join(names)})" if names else ""
     return (
         f"the system would block: from state [{describe(network, state)}]{stuck} no sequence of events that the "
         "requirements allow leads to a state where every component is in a marked state"

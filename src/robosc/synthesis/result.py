@@ -43,6 +43,25 @@ class Explanation:
 
 
 @dataclass(frozen=True)
+class Restriction:
+    """Why synthesis added a condition to a controllable event.
+
+    ``path``: a shortest run of the controlled system from the initial state to ``state``,
+    where the plant and the requirements allow ``event`` but the supervisor does not;
+    ``after``: the state ``event`` would lead to; ``consequence``: what goes wrong from
+    there (its ``path`` starts at ``after``); ``never``: the supervisor never allows the
+    event in any reachable state (its added condition is ``false``).
+    """
+
+    event: Event
+    path: tuple[Step, ...]
+    state: str
+    after: str
+    consequence: Explanation
+    never: bool = False
+
+
+@dataclass(frozen=True)
 class SynthesisResult:
     network: Network
     method: str  # "symbolic" or "explicit"
@@ -52,6 +71,17 @@ class SynthesisResult:
     seconds: float = 0.0
     explanation: Explanation | None = None
     details: dict[str, object] = field(default_factory=dict, repr=False)
+
+    def why(self, event: Event | str) -> Restriction | None:
+        """Why synthesis restricts ``event`` (None when it adds nothing to it). Computed on
+        request from the symbolic synthesis' BDDs."""
+        found = self.network.event(event) if isinstance(event, str) else event
+        fixpoint: Any = self.details.get("fixpoint")
+        if not self.ok or fixpoint is None or not found.controllable:
+            return None
+        from robosc.synthesis.why import why
+
+        return why(fixpoint, found)
 
     def guard(self, name: str) -> EventGuard:
         return next(g for g in self.guards if g.event.name == name)

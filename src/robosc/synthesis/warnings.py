@@ -1,0 +1,98 @@
+"""Warnings about a synthesized model that point at likely modelling mistakes: a
+controllable event the supervisor never allows, a requirement whose condition holds in no
+reachable state, a component state that no controlled run reaches. Each is a
+:class:`~robosc.language.diagnostics.Diagnostic`, shown like ``robosc check``'s."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from robosc.language.codes import Code
+from robosc.language.diagnostics import Diagnostic, warning
+from robosc.language.render import render
+from robosc.language.source import Span
+from robosc.plant.network import AutomatonKind, Event
+from robosc.synthesis.result import Restriction, SynthesisResult
+
+
+def event_span(event: Event) -> Span | None:
+    """Where the model declares ``event``: its transition, provide statement or communication."""
+    for origin in (event.transition, event.provide, event.communication):
+        if origin is not None:
+            return origin.span
+    return None
+
+
+def consequence(restriction: Restriction) -> str:
+    """What goes wrong after the event, in one sentence."""
+    steps = [step.event.name for step in restriction.consequence.path]
+    then = f"then {', '.join(steps)} can follow, and " if steps else ""
+    return f"it would lead to [{restriction.after}]; {then}{restriction.consequence.reason}"
+
+
+def _plant_reachable(fixpoint: Any) -> Any:
+    """The states the plant reaches without a supervisor (requirements ignored)."""
+    enc = fixpoint.enc
+    relations = list(fixpoint.relation.values())
+    reached = fixpoint.initial
+    while True:
+        before = reached
+        for relation in relations:
+            reached |= enc.post(relation, reached)
+        if reached == before:
+            return reached
+
+
+def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
+    fixpoint: Any = result.details.get("fixpoint")
+    if not result.ok or fixpoint is None:
+        return []
+    enc = fixpoint.enc
+    reachable = fixpoint.reachable
+    found: list[Diagnostic] = []
+    for guard in result.added_guards:
+        restriction = result.why(guard.event)
+        span = event_span(guard.event)
+        if restriction is None or not restriction.never or span is None:
+            continue
+        found.append(
+            warning(
+                span,
+                f"synthesis never allows '{guard.event.name}' (it adds the condition false): in "
+                f"[{restriction.state}] {consequence(restriction)}",
+                Code.NEVER_ALLOWED,
+                "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
+            )
+        )
+    seen: set[int] = set()
+    for requirement in result.network.requirements:
+        origin = requirement.origin
+        if origin is None or id(origin) in seen:
+            continue
+        if (reachable & enc.boolean(requirement.condition)) == enc.false:
+            seen.add(id(origin))
+            found.append(
+                warning(
+                    origin.span,
+                    f"{requirement.description} never holds in a reachable state: "
+                    f"'{requirement.event.name}' can never happen ({render(requirement.condition)} is always false)",
+                    Code.NEVER_HOLDS,
+                )
+            )
+    plant: Any = None
+    for automaton in result.network.automata:
+        if automaton.kind is not AutomatonKind.COMPONENT:
+            continue
+        for location in automaton.locations:
+            if (reachable & enc.at(location)) != enc.false:
+                continue
+            plant = _plant_reachable(fixpoint) if plant is None else plant
+            name = f"{automaton.name}.{location.name}"
+            if (plant & enc.at(location)) == enc.false:
+                message, hint = f"state '{name}' can never be reached: no run of the model leads there", None
+            else:
+                message = f"no controlled run reaches state '{name}': the supervisor keeps the robot out of it"
+                hint = "fine for a state to avoid (an error); otherwise see why in the explanations of the added conditions"
+            found.append(warning(location.span, message, Code.UNREACHED_STATE, hint))
+    found.sort(key=lambda d: (d.span.path, d.span.line, d.span.column))
+    return found
