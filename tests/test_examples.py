@@ -49,3 +49,43 @@ def test_pick_and_light_uses_every_construct():
     assert {p.condition is None for p in model.provides} == {True, False}
     assert {r.kind for r in model.requirements} == {m.RequirementKind.NEEDS, m.RequirementKind.DISABLES}
     assert any(len(r.communications) > 1 for r in model.requirements)
+
+
+def test_shelf_picker_shows_what_the_supervisor_buys():
+    """The example of README's "What synthesis adds": no requirement mentions when to pick;
+    synthesis forbids a pick with a full tray and says why."""
+    from robosc.api import synthesize_file
+    from robosc.language.render import render
+
+    result = synthesize_file(EXAMPLES / "shelf_picker.rscd")
+    assert result.ok
+    assert [(g.event.name, render(g.added)) for g in result.added_guards] == [
+        ("pick.c_trigger", "Tray.empty or Tray.one")
+    ]
+    why = result.why("pick.c_trigger")
+    assert why is not None and not why.never
+    assert why.state.endswith("Base.at_shelf, Arm.stowed, Tray.two")
+    assert [s.event.name for s in why.consequence.path] == ["pick.u_response"]
+    reason = why.consequence.reason
+    assert "Arm stays in holding (drop.c_trigger is forbidden here by requirement drop needs" in reason
+    assert "Base stays in at_shelf (dock.c_trigger is forbidden here by requirement dock needs Arm.stowed)" in reason
+
+
+def test_shelf_picker_without_unload_recovery_points_at_the_unhandled_error():
+    """The mistake made while writing the example: no transition on a failed unload. Synthesis
+    then never allows a pick, and the explanation names the error that traps the tray."""
+    from robosc.api import check_text, synthesize_model
+
+    text = (EXAMPLES / "shelf_picker.rscd").read_text()
+    broken = text.replace("on error from unload goto two", "")
+    assert broken != text
+    result = synthesize_model(check_text(broken).model)
+    why = result.why("pick.c_trigger")
+    assert why is not None and why.never
+    assert (
+        "after drop.c_trigger, drop.u_response, dock.c_trigger, dock.u_response, unload.c_trigger the uncontrollable "
+        "event unload.u_error can happen" in why.consequence.reason
+    )
+    assert why.consequence.reason.endswith(
+        "(Tray stays in emptying (waits for unload.u_response, which cannot happen here))"
+    )
