@@ -122,3 +122,20 @@ def test_synthesize_explains_added_conditions_and_warns(tmp_path: Path):
     assert [s["event"] for s in grab["why"]["consequence"]["path"]] == ["grab.u_error"]
     assert {w["code"] for w in data["warnings"]} == {"never-allowed", "never-holds", "unreached-state"}
     assert all(w["severity"] == "warning" and w["line"] > 0 for w in data["warnings"])
+
+
+def test_platform_claims_match_what_installs():
+    """requires-python is no lower than what every dependency needs, and README says the same."""
+    import re
+    import tomllib
+    from importlib.metadata import metadata
+
+    root = Path(__file__).resolve().parent.parent
+    ours = tomllib.loads((root / "pyproject.toml").read_text())["project"]["requires-python"]
+    lowest = tuple(int(x) for x in re.fullmatch(r">=(\d+)\.(\d+)", ours.strip()).groups())
+    for dependency in ("dd", "lark", "click", "jinja2", "rich"):
+        needed = metadata(dependency).get("Requires-Python") or ""
+        found = re.search(r">=\s*(\d+)\.(\d+)", needed)
+        if found:
+            assert tuple(int(x) for x in found.groups()) <= lowest, (dependency, needed, ours)
+    assert f"Python {lowest[0]}.{lowest[1]} or newer" in (root / "README.md").read_text()
