@@ -43,10 +43,26 @@ def warning(span: Span, message: str, code: Code, hint: str | None = None) -> Di
     return Diagnostic(Severity.WARNING, message, span, code, hint)
 
 
+def closest(name: str, candidates: Iterable[str]) -> str | None:
+    """The known name closest to ``name``: a near spelling, else the shortest name that
+    starts with it or contains it (``current`` -> ``current_correction``); None if none."""
+    known = sorted(set(candidates))
+    close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+    if close:
+        return close[0]
+    if len(name) < 3:
+        return None
+    lowered = name.lower()
+    starting = [c for c in known if c.lower().startswith(lowered)]
+    containing = [c for c in known if lowered in c.lower()]
+    found = starting or containing
+    return min(found, key=lambda c: (len(c), c)) if found else None
+
+
 def did_you_mean(name: str, candidates: Iterable[str]) -> str | None:
     """A "did you mean ...?" hint for an unknown ``name``, or None when nothing is close."""
-    close = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
-    return f"did you mean '{close[0]}'?" if close else None
+    found = closest(name, candidates)
+    return f"did you mean '{found}'?" if found else None
 
 
 def sort_key(diagnostic: Diagnostic) -> tuple[str, int, int]:

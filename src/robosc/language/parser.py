@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import gc
+import re
 import threading
 from dataclasses import dataclass
+from decimal import Decimal
 from functools import lru_cache
 from pathlib import Path
 
@@ -111,6 +113,35 @@ def _point(path: str, text: str, line: int, column: int, pos: int, length: int =
     return Span(path, line, column, line, column + length, pos, pos + length)
 
 
+_EXPONENT = re.compile(r"(?<![\w.])(\d+(?:\.\d*)?|\.\d+)[eE][+-]?\d+")
+_SPELLINGS = (  # what people write out of habit from other languages, and RoboSC's spelling
+    ("&&", "write 'and' for a logical and"),
+    ("||", "write 'or' for a logical or"),
+    ("&", "write 'and' for a logical and"),
+    ("|", "write 'or' for a logical or"),
+    ("<>", "write '!=' for 'not equal'"),
+    ("=!", "write '!=' for 'not equal'"),
+)
+
+
+def spelling_hint(text: str, pos: int) -> str | None:
+    """A hint for an operator or number spelled as in another language, at or just before ``pos``."""
+    for written, hint in _SPELLINGS:
+        if text.startswith(written, pos) or (pos > 0 and text.startswith(written, pos - 1)):
+            return hint
+    if text.startswith("==", pos) or (pos > 0 and text.startswith("==", pos - 1)):
+        return "write '=' to compare: RoboSC's equality is a single '='"
+    if re.search(r"(?<![\w^])not\s*$", text[max(0, pos - 20) : pos]):
+        return "write '!' for a logical not, as in '!S.active'"
+    line_start = text.rfind("\n", 0, pos) + 1
+    for found in _EXPONENT.finditer(text, line_start, pos + 40):
+        if found.start() <= pos <= found.end():
+            plain = format(Decimal(found.group()), "f")
+            plain = plain if "." in plain else plain + ".0"
+            return f"numbers have no exponent in RoboSC; write {plain}"
+    return None
+
+
 def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> Diagnostic:
     if (isinstance(exc, UnexpectedToken) and exc.token.type == "$END") or isinstance(exc, UnexpectedEOF):
         lines = text.splitlines() or [""]
@@ -137,6 +168,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
             )
         else:
             what, hint = f"'{shown}'", None
+        hint = hint or spelling_hint(text, token.start_pos or 0)
         return error(
             span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", Code.SYNTAX, hint
         )
@@ -152,7 +184,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
     message = f"unexpected character {shown}"
     if exc.allowed:
         message += f", expected {_describe_expected(set(exc.allowed), parser)}"
-    return error(span, message, Code.SYNTAX)
+    return error(span, message, Code.SYNTAX, spelling_hint(text, pos))
 
 
 def parse_text(text: str, path: str = "<text>") -> ParseResult:

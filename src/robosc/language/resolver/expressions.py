@@ -9,6 +9,7 @@ from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
+from robosc.language.diagnostics import closest, did_you_mean
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
@@ -96,8 +97,21 @@ class ExpressionResolver:
         candidates = list(self.component_names()) + list(self.enum_values)
         if own is not None:
             candidates += list(own.variables)
-        self.reporter.unknown(syntax.head.span, "name", name, candidates)
+        hint = did_you_mean(name, candidates) or self._member_elsewhere(name)
+        self.reporter.error(syntax.head.span, f"unknown name '{name}'", Code.UNKNOWN_NAME, hint)
         return m.Invalid(syntax.span)
+
+    def _member_elsewhere(self, name: str, skip: str | None = None) -> str | None:
+        """A hint naming ``Component.member`` for the closest state or variable of any component."""
+        qualified: dict[str, str] = {}
+        for component_name in self.component_names():
+            tables = self.components(component_name)
+            if component_name == skip or tables is None or isinstance(tables, str):
+                continue
+            for member in [*tables.states, *tables.variables]:
+                qualified.setdefault(member, f"{component_name}.{member}")
+        found = closest(name, qualified)
+        return f"did you mean '{qualified[found]}'?" if found else None
 
     def _value(self, syntax: s.Access, context: ExprContext) -> m.Expr:
         if context.value_type is None:
@@ -134,12 +148,12 @@ class ExpressionResolver:
             return m.StateRef(component.states[member.text], syntax.span)
         if member.text in component.variables:
             return self._variable(component.variables[member.text], rest, syntax.span)
-        self.reporter.unknown(
+        hint = did_you_mean(member.text, [*component.states, *component.variables])
+        self.reporter.error(
             member.span,
-            "state or variable",
-            member.text,
-            list(component.states) + list(component.variables),
-            f" in component '{name}'",
+            f"unknown state or variable '{member.text}' in component '{name}'",
+            Code.UNKNOWN_NAME,
+            hint or self._member_elsewhere(member.text, skip=name),
         )
         return m.Invalid(syntax.span)
 
