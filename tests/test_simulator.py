@@ -49,7 +49,10 @@ def test_script_drives_the_maze_solver(tmp_path: Path) -> None:
     )
     assert result.returncode == 0, result.stderr
     assert "turn_left" in result.stdout
-    assert "refused: the supervisor does not allow movement now" in result.stdout
+    assert (
+        "refused: movement is not allowed now: the requirement at line 76 needs Platform.ready and ((Distance.right"
+        in result.stdout
+    )
     events = [json.loads(line) for line in log.read_text().splitlines()]
     names = [e["event"] for e in events]
     assert names[names.index("scan_front") + 1] == "turn_left"
@@ -169,3 +172,60 @@ def test_random_cli_reports_and_library_is_refused(tmp_path: Path) -> None:
     result = run("simulate", str(ROOT / "examples/emergency_stop.rscd"))
     assert result.returncode == 2
     assert "is a library" in result.stderr
+
+
+def test_tick_n_numbers_each_cycle() -> None:
+    sim = sim_of("maze_solver")
+    outcome = sim.run("tick 3")
+    moves = [(step, e) for step, e in zip(outcome.steps, outcome.events, strict=True) if e == "movement"]
+    assert moves == [(1, "movement"), (2, "movement"), (3, "movement")]
+    with pytest.raises(CommandError, match="tick takes a number of cycles"):
+        sim.run("tick three")
+
+
+def test_refusal_names_what_is_false() -> None:
+    sim = sim_of("shelf_picker")
+    # the plant: navigate is already running
+    sim.run("navigate.c_trigger")
+    [plant] = sim.run("navigate.c_trigger").messages
+    assert plant == "refused: navigate.c_trigger cannot happen while navigate is in executing (the plant)"
+    # a requirement: one conjunct of it is false
+    sim = sim_of("shelf_picker")
+    [required] = sim.run("pick.c_trigger").messages
+    assert required == (
+        "refused: pick.c_trigger is not allowed now: the requirement at line 101 needs Base.at_shelf (false now)"
+    )
+    # the condition synthesis added: two items in the tray
+    for line in ["navigate.c_trigger", "navigate.u_response"] + [
+        "pick.c_trigger",
+        "pick.u_response",
+        "drop.c_trigger",
+        "drop.u_response",
+        "drop.c_reset",
+        "pick.c_reset",
+    ] * 2:
+        assert not sim.run(line).messages, line
+    [added] = sim.run("pick.c_trigger").messages
+    assert added == (
+        "refused: pick.c_trigger is not allowed now: synthesis added Tray.empty or Tray.one, which is false here "
+        "('robosc synthesize' explains why)"
+    )
+
+
+def test_commands_get_did_you_mean() -> None:
+    sim = sim_of("maze_solver")
+    with pytest.raises(CommandError, match="did you mean 'tick'"):
+        sim.run("tik")
+    with pytest.raises(CommandError, match="did you mean 'expect'"):
+        sim.run("expct Platform ready")
+
+
+def test_interactive_failed_expect_is_reported_and_the_session_goes_on() -> None:
+    result = run(
+        "simulate",
+        str(ROOT / "examples/maze_solver.rscd"),
+        stdin="expect Platform turning\ntick 2\nquit\n",
+    )
+    assert result.returncode == 0, result.stderr
+    assert "failed: step 0: expect Platform turning: Platform is ready" in result.stdout
+    assert "     1  movement\n     2  movement" in result.stdout  # the session went on

@@ -151,8 +151,9 @@ def _wait_forever() -> None:
 
 def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
     if not quiet:
-        for event in outcome.events:
-            click.echo(f"  {sim.step:>4}  {event}")
+        steps = outcome.steps or (sim.step,) * len(outcome.events)
+        for step, event in zip(steps, outcome.events, strict=True):
+            click.echo(f"  {step:>4}  {event}")
         for message in outcome.messages:
             click.echo(f"        {message}")
     if not quiet:
@@ -217,7 +218,7 @@ def _show_state(sim: Simulator) -> None:
 
 
 def _interactive(sim: Simulator) -> int:
-    from robosc.runtime.simulator import CommandError
+    from robosc.runtime.simulator import CommandError, Violation
 
     click.echo(f"simulating {sim.network.model.name}; 'help' lists the commands")
     _show_state(sim)
@@ -239,6 +240,9 @@ def _interactive(sim: Simulator) -> int:
             _report(sim, sim.run(line), False)
         except CommandError as exc:
             click.echo(f"error: {exc}")
+            continue
+        except Violation as exc:  # a failed expect (or a check): report it, the session goes on
+            click.echo(f"failed: {exc}")
             continue
         if word:
             _show_state(sim)

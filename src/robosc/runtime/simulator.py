@@ -24,6 +24,8 @@ from dataclasses import dataclass
 from typing import Any, TextIO
 
 from robosc.language import model as m
+from robosc.language.diagnostics import closest
+from robosc.language.render import render
 from robosc.plant.network import Network, received_type
 from robosc.runtime.module import module_name, render_module
 from robosc.runtime.onboard.values import Data, plain
@@ -51,6 +53,7 @@ class Outcome:
 
     events: tuple[str, ...]
     messages: tuple[str, ...] = ()
+    steps: tuple[int, ...] = ()  # the step of each event (same length as events)
 
 
 def load_module(plan: Plan) -> types.ModuleType:
@@ -168,7 +171,8 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         self.supervisor.tick()
-        return self._checked(Outcome(tuple(self.events[before:])))
+        events = tuple(self.events[before:])
+        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
 
     def allowed(self) -> list[str]:
         return list(self.supervisor.allowed())
@@ -181,8 +185,41 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         if not self.supervisor.perform(name):
-            return self._checked(Outcome((), (f"refused: the supervisor does not allow {name} now",)))
-        return self._checked(Outcome(tuple(self.events[before:])))
+            return self._checked(Outcome((), (f"refused: {self.refusal(name)}",)))
+        events = tuple(self.events[before:])
+        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
+
+    def refusal(self, name: str) -> str:
+        """Why the supervisor does not allow controllable ``name`` now: the plant, the parts
+        of the user's requirements that are false, or the condition synthesis added."""
+        event = self.network.event(name)
+        state = self.network_state()
+        locations = frozenset(state.locations)
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        for automaton, location in zip(self.network.automata, state.locations, strict=True):
+            if event in automaton.alphabet and not any(
+                e.event is event and e.source is location for e in automaton.edges
+            ):
+                return f"{name} cannot happen while {automaton.name} is in {location.name} (the plant)"
+        false = []
+        for requirement in self.network.requirements_on(event):
+            parts = [render(p) for p in _conjuncts(requirement.condition) if not _holds(p, locations, values)]
+            if parts:
+                origin = requirement.origin
+                where = f"the requirement at line {origin.span.line}" if origin else requirement.description
+                false.append(f"{where} needs {' and '.join(parts)}")
+        if false:
+            return f"{name} is not allowed now: " + "; ".join(false) + " (false now)"
+        guard = next((g for g in self.result.guards if g.event is event), None)
+        if guard is not None and guard.added is not None:
+            conjuncts = _conjuncts(guard.added)
+            parts = [render(p) for p in conjuncts if not _holds(p, locations, values)]
+            which = f"false here: {', '.join(parts)}" if len(conjuncts) > 1 and parts else "which is false here"
+            return (
+                f"{name} is not allowed now: synthesis added {render(guard.added)}, {which} "
+                "('robosc synthesize' explains why)"
+            )
+        return f"the supervisor does not allow {name} now"
 
     def deliver(self, name: str, value: object = None, raw: bool = True) -> Outcome:
         """An uncontrollable event with its data (raw data goes through the enum rules)."""
@@ -190,7 +227,8 @@ class Simulator:
         before = len(self.events)
         if not self.supervisor.deliver(name, value, raw):
             return self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
-        return self._checked(Outcome(tuple(self.events[before:])))
+        events = tuple(self.events[before:])
+        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
 
     def run(self, line: str) -> Outcome:
         """One script line: ``tick [N]``, an event name with optional data, ``expect NAME VALUE``
@@ -201,11 +239,18 @@ class Simulator:
         word, _, rest = text.partition(" ")
         rest = rest.strip()
         if word == "tick":
-            count = int(rest) if rest.isdigit() else 1
+            if rest and not rest.isdigit():
+                raise CommandError(f"tick takes a number of cycles, not '{rest}'")
+            count = int(rest) if rest else 1
+            if count > 100_000:
+                raise CommandError(f"tick {count}: at most 100000 cycles at a time")
             events: list[str] = []
+            steps: list[int] = []
             for _ in range(count):
-                events += self.tick().events
-            return Outcome(tuple(events))
+                outcome = self.tick()
+                events += outcome.events
+                steps += outcome.steps
+            return Outcome(tuple(events), steps=tuple(steps))
         if word == "expect":
             return self.expect(rest)
         if word == "sleep":
@@ -222,7 +267,7 @@ class Simulator:
         if word in self.supervisor.UNCONTROLLABLE:
             value, raw = self.parse_data(word, rest)
             return self.deliver(word, value, raw)
-        raise CommandError(f"unknown command or event '{word}'" + _suggest(word, self.event_names()))
+        raise CommandError(f"unknown command or event '{word}'" + _suggest(word, [*COMMANDS, *self.event_names()]))
 
     def event_names(self) -> list[str]:
         return [*self.supervisor.CONTROLLABLE, *self.supervisor.UNCONTROLLABLE]
@@ -298,8 +343,22 @@ def _random_value(t: m.DataType, rng: random.Random, depth: int = 0) -> object:
     return None
 
 
-def _suggest(word: str, options: list[str]) -> str:
-    import difflib
+COMMANDS = ("tick", "expect", "sleep", "state", "help", "quit")
 
-    close = difflib.get_close_matches(word, options, n=1)
-    return f"; did you mean '{close[0]}'?" if close else ""
+
+def _suggest(word: str, options: list[str]) -> str:
+    found = closest(word, options)
+    return f"; did you mean '{found}'?" if found else ""
+
+
+def _conjuncts(e: m.Expr) -> list[m.Expr]:
+    if isinstance(e, m.Binary) and e.op == "and":
+        return [*_conjuncts(e.left), *_conjuncts(e.right)]
+    return [e]
+
+
+def _holds(e: m.Expr, locations: frozenset[m.State], values: dict[m.Variable, Any]) -> bool:
+    try:
+        return bool(evaluate(e, locations, values))
+    except (Undefined, KeyError):
+        return True  # cannot tell: not named as a reason
