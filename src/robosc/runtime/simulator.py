@@ -203,7 +203,7 @@ class Simulator:
                 return f"{name} cannot happen while {automaton.name} is in {location.name} (the plant)"
         false = []
         for requirement in self.network.requirements_on(event):
-            parts = [render(p) for p in _conjuncts(requirement.condition) if not _holds(p, locations, values)]
+            parts = [_operand(p) for p in _conjuncts(requirement.condition) if not _holds(p, locations, values)]
             if parts:
                 origin = requirement.origin
                 where = f"the requirement at line {origin.span.line}" if origin else requirement.description
@@ -355,6 +355,12 @@ def _conjuncts(e: m.Expr) -> list[m.Expr]:
     if isinstance(e, m.Binary) and e.op == "and":
         return [*_conjuncts(e.left), *_conjuncts(e.right)]
     return [e]
+
+
+def _operand(e: m.Expr) -> str:
+    """``e`` rendered to stand as one operand of ``and``."""
+    text = render(e)
+    return f"({text})" if isinstance(e, m.Binary) and e.op in ("or", "=>") else text
 
 
 def _holds(e: m.Expr, locations: frozenset[m.State], values: dict[m.Variable, Any]) -> bool:
