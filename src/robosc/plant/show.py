@@ -14,9 +14,13 @@ def show_network(network: Network) -> str:
     lines.append("")
     lines.append("variables:")
     for variable in network.variables:
-        values = ", ".join(literal(v) for v in network.domains[variable])
+        domain = network.domains[variable]
+        if isinstance(domain, range):
+            values = f"{domain.start}..{domain.stop - 1}"
+        else:
+            values = "{" + ", ".join(literal(v) for v in domain) + "}"
         start = literal(network.initial_values[variable])
-        lines.append(f"  {variable.owner}.{variable.name} in {{{values}}} = {start}")
+        lines.append(f"  {variable.owner}.{variable.name} in {values} = {start}")
     for automaton in network.automata:
         lines.append("")
         lines.append(f"{automaton.kind.value} {automaton.name}:")
