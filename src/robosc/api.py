@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
 from robosc.language.checks import run_checks
 from robosc.language.diagnostics import Diagnostic, render_text, sort_key
@@ -21,11 +21,11 @@ from robosc.language.model import Model
 from robosc.language.parser import parse_source
 from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
-from robosc.synthesis.result import SynthesisResult
 
 if TYPE_CHECKING:
     from robosc.runtime.plan import Plan
     from robosc.runtime.simulator import Simulator
+    from robosc.synthesis.result import SynthesisResult
 
 __all__ = [
     "CheckResult",
@@ -148,6 +148,14 @@ def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:
     """Load, check and synthesize a model file (raises :class:`ModelError` on model errors)."""
     return synthesize_model(load_model(path, search_paths))
+
+
+def __getattr__(name: str) -> Any:
+    if name == "SynthesisResult":  # re-exported, imported on first use (it loads the plant stage)
+        from robosc.synthesis.result import SynthesisResult
+
+        return SynthesisResult
+    raise AttributeError(f"module 'robosc.api' has no attribute '{name}'")
 
 
 def plan_supervisor(result: SynthesisResult) -> Plan:

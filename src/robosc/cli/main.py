@@ -18,35 +18,47 @@ from collections.abc import Sequence
 if "networkx" not in sys.modules:
     sys.modules["networkx"] = None  # type: ignore[assignment]
 
+import importlib
+
 import click
 
-from robosc.cli.check import check
-from robosc.cli.cif import cif
-from robosc.cli.debug import diagram, log_command, plot
-from robosc.cli.fmt import fmt
-from robosc.cli.generate import build, generate
-from robosc.cli.simulate import simulate
-from robosc.cli.synthesize import synthesize
+from robosc import __version__
 
 EXIT_INTERNAL = 3
 
+# command name -> (module, function); a command's module is imported only when it runs
+# (or for --help), so that `robosc check` does not pay for synthesis, ROS or plotting.
+COMMANDS = {
+    "check": ("robosc.cli.check", "check"),
+    "fmt": ("robosc.cli.fmt", "fmt"),
+    "synthesize": ("robosc.cli.synthesize", "synthesize"),
+    "cif": ("robosc.cli.cif", "cif"),
+    "simulate": ("robosc.cli.simulate", "simulate"),
+    "generate": ("robosc.cli.generate", "generate"),
+    "build": ("robosc.cli.generate", "build"),
+    "plot": ("robosc.cli.debug", "plot"),
+    "diagram": ("robosc.cli.debug", "diagram"),
+    "log": ("robosc.cli.debug", "log_command"),
+}
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(package_name="robosc", prog_name="robosc")
+
+class LazyGroup(click.Group):
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMANDS:
+            return None
+        module, name = COMMANDS[cmd_name]
+        command = getattr(importlib.import_module(module), name)
+        assert isinstance(command, click.Command)
+        return command
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="robosc")
 def cli() -> None:
     """RoboSC models in, proven supervisory controllers for ROS out."""
-
-
-cli.add_command(check)
-cli.add_command(fmt)
-cli.add_command(synthesize)
-cli.add_command(cif)
-cli.add_command(simulate)
-cli.add_command(generate)
-cli.add_command(build)
-cli.add_command(plot)
-cli.add_command(diagram)
-cli.add_command(log_command)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
