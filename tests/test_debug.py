@@ -172,3 +172,44 @@ robot Q {
     tree = ET.fromstring(svg(d))  # Graphviz read the DOT, and its SVG is well-formed
     labels = ["".join(t.itertext()) for t in tree.iter() if t.tag.endswith("text")]
     assert 'do last := "x\\"y <b>"' in labels
+
+
+def test_diagrams_without_the_dot_program_use_graphviz_as_webassembly(monkeypatch: pytest.MonkeyPatch) -> None:
+    import shutil
+
+    from robosc.debug import layout
+
+    real_which = shutil.which
+    monkeypatch.setattr(layout.shutil, "which", lambda name: None if name == "dot" else real_which(name))
+    assert layout.engine() == "wasm"
+    result = synthesize_model(load_model(ROOT / "examples" / "maze_solver.rscd"))
+    platform = next(d for d in diagrams(result) if d.name == "Platform")
+    tree = ET.fromstring(svg(platform))
+    texts = {t.text for t in tree.iter("{http://www.w3.org/2000/svg}text")}
+    assert {"ready", "turning"} <= texts  # the states, laid out by the WebAssembly Graphviz
+
+
+def test_failed_layout_leaves_no_partial_files(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from robosc.debug import diagram as diagram_module
+    from robosc.debug.layout import LayoutError
+
+    calls = []
+
+    def failing(text: str) -> str:
+        calls.append(text)
+        if len(calls) == 3:
+            raise LayoutError("no Graphviz")
+        return "<svg/>"
+
+    monkeypatch.setattr(diagram_module, "to_svg", failing)
+    result = synthesize_model(load_model(ROOT / "examples" / "maze_solver.rscd"))
+    with pytest.raises(LayoutError):
+        diagram_module.write_diagrams(result, tmp_path / "out")
+    assert not (tmp_path / "out").exists()
+
+
+def test_nul_in_a_diagram_is_refused_before_graphviz() -> None:
+    from robosc.debug.layout import LayoutError, to_svg
+
+    with pytest.raises(LayoutError, match="NUL"):
+        to_svg('digraph { a [label="x\0y"] }')

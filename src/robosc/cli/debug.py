@@ -52,12 +52,15 @@ def diagram(file: str, output: str, include: tuple[str, ...]) -> None:
     model = load_robot(file, include, "a diagram")
     from robosc.api import synthesize_model
     from robosc.debug.diagram import write_diagrams
+    from robosc.debug.layout import LayoutError
 
     result = synthesize_model(model)
     if not result.ok:
         click.echo("robosc: note: no supervisor exists; drawing the plants without its conditions", err=True)
     try:
         written = write_diagrams(result, output)
+    except LayoutError as exc:
+        raise input_problem(f"cannot lay out the diagrams: {exc}") from None
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
     restricted = sum(1 for g in result.added_guards)

@@ -20,11 +20,12 @@ MODE = click.option(
 
 def live_page(result: object) -> str | None:
     """The live view's page, or None (with a note) when Graphviz is not installed."""
+    from robosc.debug.layout import LayoutError
     from robosc.debug.live import render_page
 
     try:
         return render_page(result)  # type: ignore[arg-type]
-    except Exception as exc:  # graphviz.ExecutableNotFound and its kind
+    except LayoutError as exc:
         click.echo(f"robosc: note: no live view page in the package (Graphviz: {exc})", err=True)
         return None
 

@@ -99,11 +99,14 @@ def simulate(
             raise input_problem(f"{log_path}: cannot write: {exc.strerror or exc}") from None
     live = None
     if view:
+        from robosc.debug.layout import LayoutError
         from robosc.debug.live import render_page
         from robosc.runtime.onboard.live_server import LiveView
 
         try:
             live = LiveView(render_page(result), port=port)
+        except LayoutError as exc:
+            raise input_problem(f"live view: cannot lay out the diagrams: {exc}") from None
         except OSError as exc:
             raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
         sinks.append(live.publish)

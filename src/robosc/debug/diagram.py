@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
+from robosc.debug.layout import LayoutError, to_svg  # noqa: F401 (LayoutError: raised from here)
 from robosc.language import model as m
 from robosc.language.render import render, steps
 from robosc.plant.network import Automaton, AutomatonKind, Event, event_of
@@ -169,21 +170,24 @@ def dot(diagram: Diagram, title: bool = True) -> str:
 
 
 def svg(diagram: Diagram, title: bool = True) -> str:
-    """The diagram laid out by Graphviz (``dot``), as SVG text."""
-    import graphviz
-
-    return str(graphviz.Source(dot(diagram, title)).pipe(format="svg", encoding="utf-8"))
+    """The diagram laid out by Graphviz, as SVG text (raises :class:`LayoutError`)."""
+    return to_svg(dot(diagram, title))
 
 
 def write_diagrams(result: SynthesisResult, output: str | Path) -> list[Path]:
-    """DOT and SVG files of every diagram under ``output``; returns the paths written."""
+    """DOT and SVG files of every diagram under ``output``; returns the paths written.
+    Every diagram is laid out before the first file is written, so a failure (raised as
+    :class:`LayoutError`) leaves no partial output."""
+    contents: list[tuple[str, str, str]] = []
+    for d in diagrams(result):
+        text = dot(d)
+        contents.append((d.file_stem, text, to_svg(text)))
     out = Path(output)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    for d in diagrams(result):
-        dot_path = out / f"{d.file_stem}.dot"
-        dot_path.write_text(dot(d), encoding="utf-8")
-        svg_path = out / f"{d.file_stem}.svg"
-        svg_path.write_text(svg(d), encoding="utf-8")
+    for stem, text, image in contents:
+        dot_path, svg_path = out / f"{stem}.dot", out / f"{stem}.svg"
+        dot_path.write_text(text, encoding="utf-8")
+        svg_path.write_text(image, encoding="utf-8")
         written += [dot_path, svg_path]
     return written
