@@ -134,9 +134,16 @@ def simulate(
     except Violation as violation:
         click.echo(f"robosc: violation at {violation}", err=True)
         code = EXIT_MODEL_ERRORS
+    except OSError as exc:  # the event log: disk full, a closed pipe
+        click.echo(f"robosc: error: {log_path or 'output'}: cannot write: {exc.strerror or exc}", err=True)
+        code = EXIT_USAGE
     finally:
         for close in closers:
-            close()
+            try:
+                close()
+            except OSError as exc:
+                click.echo(f"robosc: error: {log_path}: cannot write: {exc.strerror or exc}", err=True)
+                code = EXIT_USAGE
     if code == EXIT_OK:
         _show_state(sim)
     raise exit_with(code) from None
@@ -166,11 +173,14 @@ def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
 
 
 def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
+    from robosc.language.loader import InputError, regular_file
     from robosc.runtime.simulator import CommandError
 
     try:
-        with open(path, encoding="utf-8") as handle:
+        with regular_file(path, "a script").open(encoding="utf-8") as handle:
             lines = handle.read().splitlines()
+    except InputError as exc:
+        raise input_problem(str(exc)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise input_problem(f"{path}: cannot read: {exc}") from None
     for number, line in enumerate(lines, 1):

@@ -8,6 +8,7 @@ with a JSON schema) so that Foxglove and the ROS bag tools open it.
 from __future__ import annotations
 
 import json
+import stat
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -68,10 +69,18 @@ def _record(raw: Any, where: str) -> Record:
     return Record(time, event, controllable, raw.get("data"), state if isinstance(state, dict) else {})
 
 
+MAX_LOG_BYTES = 1 << 30
+
+
 def read_log(path: str | Path) -> list[Record]:
     """The records of a JSON Lines (``.jsonl``, ``.json``, ``.log``) or MCAP (``.mcap``) log."""
     path = Path(path)
     try:
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode):
+            raise LogError(f"{path}: not a regular file (a directory, pipe or device), so not an event log")
+        if info.st_size > MAX_LOG_BYTES:
+            raise LogError(f"{path}: {info.st_size} bytes is too large for an event log (at most {MAX_LOG_BYTES})")
         if path.suffix == ".mcap":
             with path.open("rb") as handle:
                 return list(_read_mcap(handle, str(path)))
@@ -88,6 +97,8 @@ def read_log(path: str | Path) -> list[Record]:
             raw = json.loads(line)
         except json.JSONDecodeError as error:
             raise LogError(f"{path}:{number}:{error.colno}: not JSON: {error.msg}") from None
+        except RecursionError:
+            raise LogError(f"{path}:{number}:1: JSON nested too deeply") from None
         records.append(_record(raw, f"{path}:{number}:1"))
     return records
 
@@ -99,6 +110,8 @@ def _read_mcap(handle: BinaryIO, name: str) -> Iterator[Record]:
     try:
         for _, channel, message in make_reader(handle).iter_messages(topics=[CHANNEL]):
             yield _record(json.loads(message.data), f"{name}: message at {message.log_time} ns on {channel.topic}")
+    except RecursionError:
+        raise LogError(f"{name}: a message's JSON is nested too deeply") from None
     except (McapError, json.JSONDecodeError, ValueError) as error:
         raise LogError(f"{name}: not a readable MCAP event log: {error}") from None
 

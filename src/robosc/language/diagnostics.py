@@ -69,6 +69,9 @@ def sort_key(diagnostic: Diagnostic) -> tuple[str, int, int]:
     return (diagnostic.span.path, diagnostic.span.line, diagnostic.span.column)
 
 
+SHOWN = 120  # at most this much of a long source line is shown under a diagnostic
+
+
 def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> str:
     """``path:line:col: error: message``, then the source line and a caret under the span."""
     span = diagnostic.span
@@ -79,8 +82,15 @@ def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> st
         if text.strip():
             width = (span.end_column - span.column) if span.end_line == span.line else 1
             width = max(1, min(width, len(text) - span.column + 1))
+            column = span.column
+            if len(text) > SHOWN:  # a window of the line around the span
+                start = max(0, min(column - 1 - SHOWN // 3, len(text) - SHOWN))
+                shown = text[start : start + SHOWN]
+                text = ("..." if start else "") + shown + ("..." if start + SHOWN < len(text) else "")
+                column = column - start + (3 if start else 0)
+                width = max(1, min(width, SHOWN - (column - 1)))
             lines.append(f"    {text}")
-            lines.append("    " + " " * (span.column - 1) + "^" + "~" * (width - 1))
+            lines.append("    " + " " * (column - 1) + "^" + "~" * (width - 1))
     if diagnostic.hint:
         lines.append(f"    hint: {diagnostic.hint}")
     return "\n".join(lines)

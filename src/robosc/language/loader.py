@@ -9,6 +9,7 @@ files in name order).
 from __future__ import annotations
 
 import re
+import stat
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,12 +28,32 @@ class InputError(Exception):
     """A file cannot be read as a model (missing, a directory, not UTF-8, unreadable)."""
 
 
-def read_source(path: str | Path) -> SourceFile:
-    """Read a model file as UTF-8 text, or raise :class:`InputError` saying why not."""
+MAX_MODEL_BYTES = 16 * 1024 * 1024  # a 5,000-line model is about 0.2 MB
+
+
+def regular_file(path: str | Path, what: str = "a model file", limit: int = MAX_MODEL_BYTES) -> Path:
+    """``path`` if it is a regular file of at most ``limit`` bytes, else :class:`InputError`
+    (a FIFO or a device such as /dev/zero would block or never end)."""
     p = Path(path)
     try:
-        if p.is_dir():
-            raise InputError(f"{path}: is a directory, not a model file")
+        info = p.stat()
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise InputError(f"{path}: is a directory, not {what}")
+    if not stat.S_ISREG(info.st_mode):
+        raise InputError(f"{path}: not a regular file (a pipe, socket or device), so not {what}")
+    if info.st_size > limit:
+        raise InputError(f"{path}: {info.st_size} bytes is too large for {what} (at most {limit})")
+    return p
+
+
+def read_source(path: str | Path) -> SourceFile:
+    """Read a model file as UTF-8 text, or raise :class:`InputError` saying why not."""
+    try:
+        p = regular_file(path)
         data = p.read_bytes()
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
@@ -59,6 +80,7 @@ class LibraryFinder:
         self._units: dict[str, LibraryUnit | None] = {}
         self._index: dict[str, Path] | None = None
         self._loading: set[str] = set()
+        self._duplicates: dict[str, list[Path]] = {}
 
     def _library_files(self) -> dict[str, Path]:
         if self._index is None:
@@ -70,13 +92,16 @@ class LibraryFinder:
                     continue
                 for candidate in candidates:
                     try:
+                        regular_file(candidate)
                         with candidate.open(encoding="utf-8", errors="replace") as handle:
                             head = handle.read(4096)
-                    except OSError:
+                    except (OSError, InputError):
                         continue
                     match = _LIBRARY_HEADER.match(head)
                     if match:
-                        self._index.setdefault(match.group(1), candidate)
+                        found = self._index.setdefault(match.group(1), candidate)
+                        if found != candidate and found.resolve() != candidate.resolve():
+                            self._duplicates.setdefault(match.group(1), [found]).append(candidate)
         return self._index
 
     def find(self, name: s.Name, reporter: Reporter) -> LibraryUnit | None:
@@ -89,6 +114,16 @@ class LibraryFinder:
             reporter.diagnostics[-1] = _with_hint(
                 reporter.diagnostics[-1], f"looked in {where}; add a directory with -I DIR"
             )
+            return None
+        if name.text in self._duplicates:
+            where = " and ".join(str(p) for p in self._duplicates[name.text])
+            reporter.error(
+                name.span,
+                f"more than one library is named '{name.text}': {where}",
+                Code.IO,
+                "keep one of them, or give the other a different 'library' name",
+            )
+            self._units[name.text] = None
             return None
         try:
             source = read_source(path)

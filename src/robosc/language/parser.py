@@ -23,7 +23,7 @@ from robosc.language import syntax as s
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
 from robosc.language.source import SourceFile, Span
-from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
+from robosc.language.transformer import MAX_STRING, SyntaxBuilder, SyntaxProblem
 
 GRAMMAR = Path(__file__).with_name("grammar.lark")
 
@@ -200,7 +200,16 @@ def parse_text(text: str, path: str = "<text>") -> ParseResult:
             gc.enable()
 
 
+_LONG_STRING = re.compile(f"\"[^\"\\n]{{{MAX_STRING + 1},}}|'[^'\\n]{{{MAX_STRING + 1},}}")
+
+
 def _parse(text: str, path: str) -> ParseResult:
+    long = _LONG_STRING.search(text)
+    if long is not None:  # before Lark, whose string pattern needs memory in proportion to the string
+        line = text.count("\n", 0, long.start()) + 1
+        column = long.start() - (text.rfind("\n", 0, long.start()) + 1) + 1
+        span = _point(path, text, line, column, long.start())
+        return ParseResult(None, (error(span, f"string too long (more than {MAX_STRING} characters)", Code.LIMIT),))
     parser = _lark()
     with _lock:
         _collector.tokens = []
@@ -215,7 +224,7 @@ def _parse(text: str, path: str) -> ParseResult:
     try:
         result = builder.build(tree)
     except SyntaxProblem as problem:
-        return ParseResult(None, (error(problem.span, problem.message, Code.SYNTAX, problem.hint),))
+        return ParseResult(None, (error(problem.span, problem.message, problem.code, problem.hint),))
     return ParseResult(result, ())
 
 

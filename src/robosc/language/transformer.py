@@ -13,19 +13,24 @@ from lark import Token, Tree
 from lark.tree import Meta
 
 from robosc.language import syntax as s
+from robosc.language.codes import Code
 from robosc.language.keywords import KEYWORDS
 from robosc.language.source import Span
 
-MAX_EXPRESSION_DEPTH = 100
+MAX_INT = 2**63 - 1
+MAX_STRING = 65536
+MAX_EXPRESSION_DEPTH = 100  # the depth of an expression tree: later stages recurse over it, and
+# generated Python code nests it in parentheses (CPython reads at most 200 levels)
 
 
 class SyntaxProblem(Exception):
     """A problem found while building nodes (the grammar alone cannot see it)."""
 
-    def __init__(self, span: Span, message: str, hint: str | None = None) -> None:
+    def __init__(self, span: Span, message: str, hint: str | None = None, code: Code = Code.SYNTAX) -> None:
         super().__init__(message)
         self.span = span
         self.message = message
+        self.code = code
         self.hint = hint
 
 
@@ -45,6 +50,7 @@ class SyntaxBuilder:
         self.path = path
         self.comments = comments
         self._depth: dict[int, int] = {}
+        self._chain: dict[int, int] = {}
 
     def build(self, tree: Tree[Token]) -> s.FileSyntax:
         """Build bottom-up without recursion (no depth limit from Python's stack)."""
@@ -78,10 +84,26 @@ class SyntaxBuilder:
         )
 
     def _expr(self, node: s.Expr, *children: Any) -> s.Expr:
+        """Bound the depth of expression trees, which later stages walk recursively. A long
+        run of one operator (``a and b and c ...``) is a deep tree too, and is named so."""
         depth = 1 + max((self._depth.get(id(c), 0) for c in children), default=0)
+        chain = 1
+        if isinstance(node, s.Binary) and isinstance(node.left, s.Binary) and node.left.op == node.op:
+            chain = self._chain.get(id(node.left), 1) + 1
         if depth > MAX_EXPRESSION_DEPTH:
-            raise SyntaxProblem(node.span, f"expression nested more than {MAX_EXPRESSION_DEPTH} levels deep")
+            if isinstance(node, s.Binary) and chain + 1 > MAX_EXPRESSION_DEPTH // 2:
+                message = (
+                    f"expression more than {MAX_EXPRESSION_DEPTH} levels deep "
+                    f"({chain + 1} operands joined by '{node.op}' in a row)"
+                )
+                hint = "split the condition, e.g. over several requirements on the same event"
+                raise SyntaxProblem(node.span, message, hint, code=Code.LIMIT)
+            raise SyntaxProblem(
+                node.span, f"expression nested more than {MAX_EXPRESSION_DEPTH} levels deep", code=Code.LIMIT
+            )
         self._depth[id(node)] = depth
+        if chain > 1:
+            self._chain[id(node)] = chain
         return node
 
     # -- file ----------------------------------------------------------------
@@ -202,8 +224,20 @@ class SyntaxBuilder:
             return s.BasicTypeSyntax("integer", ch[0], ch[1], self._span(meta))
         return s.BasicTypeSyntax("integer", span=self._span(meta))
 
+    def _int(self, token: Token) -> int:
+        """An integer literal, refused when it does not fit in 64 bits (as CIF's and ROS's do)."""
+        text = str(token)
+        if len(text.lstrip("0")) > 19 or int(text) > MAX_INT:
+            shown = text if len(text) <= 30 else f"{text[:12]}...{text[-6:]} ({len(text)} digits)"
+            raise SyntaxProblem(
+                self.token_span(token),
+                f"integer {shown} is too large: integers are 64-bit, at most {MAX_INT}",
+                code=Code.LIMIT,
+            )
+        return int(text)
+
     def signed_int(self, meta: Meta, ch: list[Token]) -> int:
-        return -int(ch[1]) if len(ch) == 2 else int(ch[0])
+        return -self._int(ch[1]) if len(ch) == 2 else self._int(ch[0])
 
     def array_type(self, meta: Meta, ch: list[Any]) -> s.ArrayTypeSyntax:
         return s.ArrayTypeSyntax(ch[0], self._span(meta))
@@ -267,7 +301,7 @@ class SyntaxBuilder:
         return self._expr(s.Paren(ch[0], self._span(meta)), ch[0])
 
     def int_literal(self, meta: Meta, ch: list[Token]) -> s.IntLit:
-        return s.IntLit(int(ch[0]), self._span(meta))
+        return s.IntLit(self._int(ch[0]), self._span(meta))
 
     def double_literal(self, meta: Meta, ch: list[Token]) -> s.DoubleLit:
         return s.DoubleLit(str(ch[0]), self._span(meta))
@@ -280,6 +314,12 @@ class SyntaxBuilder:
 
     def string_literal(self, meta: Meta, ch: list[Token]) -> s.StrLit:
         raw = str(ch[0])
+        if len(raw) > MAX_STRING + 2:
+            raise SyntaxProblem(
+                self._span(meta),
+                f"string of {len(raw) - 2} characters is too long (at most {MAX_STRING})",
+                code=Code.LIMIT,
+            )
         return s.StrLit(raw, _unescape_string(raw), self._span(meta))
 
     def bool_literal(self, meta: Meta, ch: list[Token]) -> s.BoolLit:
@@ -290,7 +330,7 @@ class SyntaxBuilder:
         return s.Access(head, tuple(ch[1:]), self._span(meta))
 
     def index_step(self, meta: Meta, ch: list[Token]) -> s.IndexStep:
-        return s.IndexStep(int(ch[0]), self._span(meta))
+        return s.IndexStep(self._int(ch[0]), self._span(meta))
 
     def member_step(self, meta: Meta, ch: list[s.Name]) -> s.MemberStep:
         return s.MemberStep(ch[0], self._span(meta))

@@ -280,10 +280,12 @@ class Simulator:
             return text, False  # an enum value, given directly
         try:
             parsed = json.loads(text)
+            return Data.wrap(parsed), True
         except json.JSONDecodeError as error:
             hint = f" (or one of {', '.join(v.name for v in enum.values)})" if enum is not None else ""
             raise CommandError(f"data for {name} must be JSON{hint}: {error.msg}") from None
-        return Data.wrap(parsed), True
+        except (RecursionError, ValueError):
+            raise CommandError(f"data for {name} is nested too deeply") from None
 
     def received_enum(self, name: str) -> m.EnumType | None:
         t = received_type(self.network.event(name))

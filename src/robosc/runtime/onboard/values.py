@@ -19,7 +19,7 @@ class Data(object):
 
     def __init__(self, fields: dict[Any, Any]) -> None:
         for key, value in fields.items():
-            setattr(self, str(key), Data.wrap(value))
+            vars(self)[str(key)] = Data.wrap(value)  # not setattr: a key such as "__class__" stays data
 
     @staticmethod
     def wrap(value: Any, depth: int = 0) -> Any:
@@ -28,7 +28,7 @@ class Data(object):
         if isinstance(value, dict):
             data = Data({})
             for key, item in value.items():
-                setattr(data, str(key), Data.wrap(item, depth + 1))
+                vars(data)[str(key)] = Data.wrap(item, depth + 1)
             return data
         if isinstance(value, list):
             return [Data.wrap(item, depth + 1) for item in value]
