@@ -55,3 +55,18 @@ def test_loading_mutated_models_only_ever_gives_diagnostics(tmp_path_factory, ca
     formatted = format_text(text, path)
     if isinstance(formatted, str):
         assert format_text(formatted, path) == formatted
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(sorted(SOURCES)), st.integers(0, 2**32 - 1), st.integers(1, 4))
+def test_mutated_models_through_check_synthesize_and_generate(tmp_path_factory, name: str, seed: int, count: int):
+    """The whole pipeline: a mutated example ends as diagnostics, a library, no supervisor,
+    a refusal by the ROS generator, or generated packages; never as another exception.
+    (``python benchmarks/fuzz.py`` runs 10,000 of these.)"""
+    import random
+
+    from mutate import mutate, pipeline
+
+    text = mutate(SOURCES[name], random.Random(seed), count)
+    outcome = pipeline(text, name, tmp_path_factory.mktemp("pipeline"))
+    assert outcome in {"errors", "library", "no supervisor", "refused by ROS", "generated"}

@@ -346,3 +346,23 @@ def test_unreached_states_say_whether_the_supervisor_avoids_them():
     unreachable = SMALL_FACTORY.replace("on response from make goto overflow", "on response from make")
     [never] = synthesis_warnings(synthesize_model(load(unreachable)))
     assert never.message == "state 'Buffer.overflow' can never be reached: no run of the model leads there"
+
+
+def test_exact_state_count_agrees_with_cudd_where_cudd_is_exact():
+    import random
+
+    from dd import cudd
+
+    from robosc.synthesis.encoding import _minterms
+
+    bdd = cudd.BDD()
+    names = [f"v{i}" for i in range(8)]
+    bdd.declare(*names)
+    rng = random.Random(3)
+    for _ in range(200):
+        clauses = [
+            " /\\ ".join(rng.choice(["", "~"]) + rng.choice(names) for _ in range(rng.randint(1, 4)))
+            for _ in range(rng.randint(1, 4))
+        ]
+        u = bdd.add_expr(" \\/ ".join(f"({c})" for c in clauses))
+        assert _minterms(bdd, u, len(names)) == int(bdd.count(u, nvars=len(names)))

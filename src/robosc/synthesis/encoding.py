@@ -168,7 +168,17 @@ class Encoding:
         return Relation(bdd, bits, [b + "'" for b in bits])
 
     def count(self, states: BDD) -> int:
-        return int(self.bdd.count(states, nvars=len(self.x_vars))) if self.x_vars else int(states == self.true)
+        """How many states ``states`` holds (exact, also beyond what a double can hold)."""
+        if not self.x_vars:
+            return int(states == self.true)
+        try:
+            counted = self.bdd.count(states, nvars=len(self.x_vars))
+            if counted < 2**52:  # a double counts exactly below 2^53
+                return int(counted)
+        except (RuntimeError, OverflowError):  # CUDD counts in doubles: more than about 2^1024 states
+            pass
+        total = len(self.bdd.vars)
+        return _minterms(self.bdd, states, total) >> (total - len(self.x_vars))
 
     def state(self, locations: dict[Automaton, m.State], values: dict[m.Variable, Any]) -> BDD:
         """The BDD of one concrete state."""
@@ -250,3 +260,34 @@ def _merge(pairs: Any) -> dict[Any, BDD]:
     for value, where in pairs:
         result[value] = result[value] | where if value in result else where
     return result
+
+
+def _minterms(bdd: Any, root: BDD, levels: int) -> int:
+    """Satisfying assignments of ``root`` over all ``levels`` variables, counted exactly with
+    Python integers (CUDD's count is a double). Iterative, as BDDs can be deep; complement
+    edges (``negated``) are followed."""
+    memo: dict[tuple[int, bool], tuple[int, int]] = {}
+
+    def leaf(u: Any) -> tuple[int, int] | None:
+        if u == bdd.false:
+            return (0, levels)
+        if u == bdd.true:
+            return (1, levels)
+        return memo.get((int(u), u.negated))
+
+    stack = [root]
+    while stack:
+        u = stack[-1]
+        if leaf(u) is not None:
+            stack.pop()
+            continue
+        low, high = (~u.low, ~u.high) if u.negated else (u.low, u.high)
+        lo, hi = leaf(low), leaf(high)
+        if lo is None or hi is None:
+            stack += [c for c, r in ((low, lo), (high, hi)) if r is None]
+            continue
+        level = u.level
+        memo[(int(u), u.negated)] = (lo[0] << (lo[1] - level - 1)) + (hi[0] << (hi[1] - level - 1)), level
+        stack.pop()
+    count, level = leaf(root) or (0, levels)
+    return count << level

@@ -18,6 +18,7 @@ from robosc.language.checks import (
     initial_state,
     integer_range,
     interface_links,
+    limits,
     marked_reachable,
     no_array,
     no_data_to_request,
@@ -59,6 +60,7 @@ CHECKS: tuple[Check, ...] = (
     object_variables.check,  # no variable of object type
     variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
     implicit_start.check,  # warning: an enum variable read with no initial value
+    limits.check,  # sizes synthesis cannot represent
 )
 
 
