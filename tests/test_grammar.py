@@ -193,4 +193,8 @@ def test_deep_nesting_is_a_diagnostic_not_a_crash():
     assert result.syntax is None and "nested" in result.diagnostics[0].message
     long_chain = " or ".join(["true"] * 3000)
     result = parse_text(f"robot R {{ requirement a needs {long_chain} }}")
-    assert result.syntax is None and "nested" in result.diagnostics[0].message
+    [found] = result.diagnostics
+    assert result.syntax is None and found.code == "limit"
+    assert found.message == "expression more than 100 levels deep (102 operands joined by 'or' in a row)"
+    result = parse_text(f"robot R {{ requirement a needs {' or '.join(['true'] * 101)} }}")
+    assert result.syntax is not None  # 101 operands: 100 levels, the most
