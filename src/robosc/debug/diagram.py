@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
-from robosc.debug.layout import LayoutError, to_svg  # noqa: F401 (LayoutError: raised from here)
+from robosc.debug.layout import to_svg
 from robosc.language import model as m
 from robosc.language.render import render, steps
 from robosc.plant.network import Automaton, AutomatonKind, Event, event_of
@@ -170,7 +170,7 @@ def dot(diagram: Diagram, title: bool = True) -> str:
 
 
 def svg(diagram: Diagram, title: bool = True) -> str:
-    """The diagram laid out by Graphviz, as SVG text (raises :class:`LayoutError`)."""
+    """The diagram laid out by Graphviz, as SVG text (raises ``robosc.debug.layout.LayoutError``)."""
     return to_svg(dot(diagram, title))
 
 
