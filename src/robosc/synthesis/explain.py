@@ -5,11 +5,12 @@ event would lead to, see :mod:`robosc.synthesis.why`)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 from robosc.language.render import render
 from robosc.plant.network import AutomatonKind, Event
-from robosc.synthesis.encoding import BDD
+from robosc.synthesis.encoding import BDD, Relation
 from robosc.synthesis.result import Explanation, Step
 from robosc.synthesis.state import NetworkState, describe
 
@@ -23,6 +24,48 @@ def pick(fp: Any, states: BDD) -> NetworkState:
     return NetworkState(
         tuple(decoded[id(a)] for a in network.automata), tuple(decoded[id(v)] for v in network.variables)
     )
+
+
+def layers_from(
+    enc: Any, start: BDD, relations: Iterable[Relation], within: BDD | None = None, until: BDD | None = None
+) -> list[BDD]:
+    """Breadth-first layers from ``start`` over ``relations`` (layer k: the states first
+    reached after k events), staying ``within`` those states, up to the first layer that
+    meets ``until`` (or until nothing new is reached)."""
+    relations = list(relations)
+    layers = [start]
+    seen = start
+    while until is None or (layers[-1] & until) == enc.false:
+        image = enc.false
+        for relation in relations:
+            image |= enc.post(relation, layers[-1])
+        frontier = image & ~seen
+        if within is not None:
+            frontier &= within
+        if frontier == enc.false:
+            break
+        layers.append(frontier)
+        seen |= frontier
+    return layers
+
+
+def walk_back(
+    fp: Any, layers: list[BDD], end: NetworkState, steps: Sequence[tuple[Event, Relation]]
+) -> list[tuple[Event, NetworkState]]:
+    """The events from ``layers[0]`` to ``end`` (a state of the last layer), one per layer, each
+    with the state it reaches; ``steps`` are tried in order, so the choice is the same every run."""
+    enc = fp.enc
+    here = end
+    path: list[tuple[Event, NetworkState]] = []
+    for layer in reversed(layers[:-1]):
+        for event, relation in steps:
+            before = layer & enc.pre(relation, fp.state(here))
+            if before != enc.false:
+                path.append((event, here))
+                here = pick(fp, before)
+                break
+    path.reverse()
+    return path
 
 
 def explain(fp: Any) -> Explanation:
@@ -39,35 +82,14 @@ def explain_from(fp: Any, start: BDD, failed: bool = False) -> Explanation:
     for event in uncontrollable:
         blocked_at |= enc.pre(fp.relation[event], fp.bad)
     sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
-    layers = [start]
-    seen = start
-    while (layers[-1] & sources) == enc.false:
-        image = enc.false
-        for event in uncontrollable:
-            image |= enc.post(fp.relation[event], layers[-1])
-        frontier = image & fp.bad & ~seen
-        if frontier == enc.false:
-            break
-        layers.append(frontier)
-        seen |= frontier
+    layers = layers_from(enc, start, (fp.relation[e] for e in uncontrollable), within=fp.bad, until=sources)
     target = layers[-1] & sources
     if target == enc.false:  # cannot happen when the initial state is bad; be safe anyway
         target = layers[-1]
-    # walk back to the initial state, one uncontrollable event per layer
-    here = pick(fp, target)
-    here_bdd = fp.state(here)
-    steps: list[Step] = []
-    for layer in reversed(layers[:-1]):
-        for event in uncontrollable:
-            before = layer & enc.pre(fp.relation[event], here_bdd)
-            if before != enc.false:
-                steps.append(Step(event, describe(network, here)))
-                here = pick(fp, before)
-                here_bdd = fp.state(here)
-                break
-    steps.reverse()
     last = pick(fp, target)
-    return Explanation(_reason(fp, last, failed), describe(network, pick(fp, start)), tuple(steps))
+    path = walk_back(fp, layers, last, [(e, fp.relation[e]) for e in uncontrollable])
+    steps = tuple(Step(event, describe(network, reached)) for event, reached in path)
+    return Explanation(_reason(fp, last, failed), describe(network, pick(fp, start)), steps)
 
 
 def _exits(fp: Any, state: NetworkState) -> list[str]:
@@ -84,11 +106,12 @@ def _exits(fp: Any, state: NetworkState) -> list[str]:
             if edge.source is not location or edge.target is location:
                 continue
             event = edge.event
-            broken = [r for r in network.requirements_on(event) if (where & enc.boolean(r.condition)) == enc.false]
             if not event.controllable:
                 never = (where & fp.enabled[event]) == enc.false
                 reasons.append(f"waits for {event.name}{', which cannot happen here' if never else ''}")
-            elif broken:
+                continue
+            broken = [r for r in network.requirements_on(event) if (where & enc.boolean(r.condition)) == enc.false]
+            if broken:
                 reasons.append(f"{event.name} is forbidden here by {broken[0].description}")
             elif (where & fp.enabled[event]) == enc.false:
                 reasons.append(f"{event.name} cannot happen here")
@@ -99,69 +122,47 @@ def _exits(fp: Any, state: NetworkState) -> list[str]:
     return found
 
 
+def _required_moves(fp: Any) -> tuple[list[tuple[Event, Relation]], BDD]:
+    """Each event's transitions where the requirements allow it, and the states from which
+    no marked state can be reached over them at all (supervisor or not). Kept per result."""
+    if "required moves" not in fp.memo:
+        from robosc.synthesis.symbolic import closure
+
+        enc = fp.enc
+        restricted = [(e, fp.relation[e].restrict(fp.required[e])) for e in enc.network.events]
+        dead = enc.valid() & ~closure(enc, fp.marked, (r for _, r in restricted))
+        fp.memo["required moves"] = (restricted, dead)
+    found: tuple[list[tuple[Event, Relation]], BDD] = fp.memo["required moves"]
+    return found
+
+
 def _trap(fp: Any, state: NetworkState) -> str | None:
     """Where the shortest way from ``state`` to a marked state (events the requirements
     allow) is cut: the first state on it where an uncontrollable event leads somewhere no
     marked state can be reached from at all, or where an uncontrollable event breaks a
     requirement. None when the cut is further away than that."""
     enc = fp.enc
+    restricted, dead = _required_moves(fp)
+    layers = layers_from(enc, fp.state(state), (r for _, r in restricted), until=fp.marked)
+    if (layers[-1] & fp.marked) == enc.false:
+        return None
+    path = walk_back(fp, layers, pick(fp, layers[-1] & fp.marked), restricted)
     network = enc.network
-    restricted = {e: fp.relation[e].restrict(fp.required[e]) for e in network.events}
-    # states from which a marked state can be reached at all (supervisor or not)
-    hopeful = fp.marked
-    while True:
-        before = hopeful
-        for relation in restricted.values():
-            hopeful |= enc.pre(relation, hopeful) & enc.valid()
-        if hopeful == before:
-            break
-    dead = enc.valid() & ~hopeful
-    # breadth-first from the stuck state to a marked state
-    layers = [fp.state(state)]
-    seen = layers[0]
-    while (layers[-1] & fp.marked) == enc.false:
-        image = enc.false
-        for relation in restricted.values():
-            image |= enc.post(relation, layers[-1])
-        frontier = image & ~seen
-        if frontier == enc.false:
-            return None
-        layers.append(frontier)
-        seen |= frontier
-    here = pick(fp, layers[-1] & fp.marked)
-    path: list[tuple[Event, NetworkState]] = []
-    for layer in reversed(layers[:-1]):
-        for event, relation in restricted.items():
-            before = layer & enc.pre(relation, fp.state(here))
-            if before != enc.false:
-                path.append((event, here))
-                here = pick(fp, before)
-                break
-    path.reverse()
-    walked: list[str] = []
-    at = state
-    for event, reached in [(None, state), *path]:
-        if event is not None:
-            walked.append(event.name)
-            at = reached
+    for index, at in enumerate([state, *(reached for _, reached in path)]):
+        route = f"after {', '.join(event.name for event, _ in path[:index])} " if index else ""
         where = fp.state(at)
         for u in network.uncontrollable:
             into = enc.post(fp.relation[u], where)
+            cut = f"The shortest way on to a marked state is cut: {route}the uncontrollable event {u.name} can "
             if (into & dead) != enc.false:
                 trapped = pick(fp, into & dead)
                 stays = "; ".join(_exits(fp, trapped))
-                route = f"after {', '.join(walked)} " if walked else ""
                 return (
-                    f"The shortest way on to a marked state is cut: {route}the uncontrollable event {u.name} can "
-                    f"happen and lead to [{describe(network, trapped)}], from where no marked state can be reached "
-                    f"at all ({stays or 'no component can leave'})"
+                    f"{cut}happen and lead to [{describe(network, trapped)}], from where no marked state can be "
+                    f"reached at all ({stays or 'no component can leave'})"
                 )
             if (fp.requirement_bad & into) != enc.false:
-                route = f"after {', '.join(walked)} " if walked else ""
-                return (
-                    f"The shortest way on to a marked state is cut: {route}the uncontrollable event {u.name} can "
-                    "lead to a state where an uncontrollable event breaks a requirement"
-                )
+                return f"{cut}lead to a state where an uncontrollable event breaks a requirement"
     return None
 
 

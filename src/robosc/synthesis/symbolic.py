@@ -12,7 +12,8 @@ the plant allows it, its requirements hold, and none of its successors is bad.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from collections.abc import Iterable
+from dataclasses import dataclass, field
 from typing import Any
 
 from robosc.language import model as m
@@ -38,6 +39,7 @@ class Fixpoint:
     bad: BDD
     allowed: dict[Event, BDD]  # controllable events: where the supervisor allows them
     reachable: BDD
+    memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
 
     def allows(self, event: Event, state: NetworkState) -> bool:
         """Whether ``event`` can happen in ``state`` under the supervisor."""
@@ -58,16 +60,29 @@ class Fixpoint:
         return self.enc.state(locations, values)
 
 
-def _closure(enc: Encoding, start: BDD, relations: list[Relation]) -> BDD:
+def closure(enc: Encoding, start: BDD, relations: Iterable[Relation]) -> BDD:
     """``start`` and every state with a path into it over ``relations``.
 
     Chaining: each relation's image is added before the next relation is applied,
     which reaches the fixed point in far fewer rounds than breadth-first layers."""
+    relations = list(relations)
     result = start
     while True:
         before = result
         for relation in relations:
             result |= enc.pre(relation, result) & enc.valid()
+        if result == before:
+            return result
+
+
+def reach(enc: Encoding, start: BDD, relations: Iterable[Relation]) -> BDD:
+    """``start`` and every state reachable from it over ``relations`` (chained, as :func:`closure`)."""
+    relations = list(relations)
+    result = start
+    while True:
+        before = result
+        for relation in relations:
+            result |= enc.post(relation, result)
         if result == before:
             return result
 
@@ -96,7 +111,7 @@ def fixpoint(network: Network) -> Fixpoint:
 
     bad = requirement_bad
     while True:
-        bad = _closure(enc, bad, uncontrollable)
+        bad = closure(enc, bad, uncontrollable)
         good = marked & ~bad
         while True:  # nonblocking: who reaches a marked state through good states (chained)
             before = good
@@ -115,13 +130,7 @@ def fixpoint(network: Network) -> Fixpoint:
     reachable = enc.false
     if (initial & bad) == enc.false:
         steps = [relation[e].restrict(allowed[e]) for e in network.controllable] + uncontrollable
-        reachable = initial
-        while True:  # forward reachability under the supervisor (chained)
-            before = reachable
-            for r in steps:
-                reachable |= enc.post(r, reachable)
-            if reachable == before:
-                break
+        reachable = reach(enc, initial, steps)  # forward reachability under the supervisor
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 

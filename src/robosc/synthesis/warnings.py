@@ -13,6 +13,7 @@ from robosc.language.render import render
 from robosc.language.source import Span
 from robosc.plant.network import AutomatonKind, Event
 from robosc.synthesis.result import Restriction, SynthesisResult
+from robosc.synthesis.symbolic import reach
 
 
 def event_span(event: Event) -> Span | None:
@@ -28,19 +29,6 @@ def consequence(restriction: Restriction) -> str:
     steps = [step.event.name for step in restriction.consequence.path]
     then = f"then {', '.join(steps)} can follow, and " if steps else ""
     return f"it would lead to [{restriction.after}]; {then}{restriction.consequence.reason}"
-
-
-def _plant_reachable(fixpoint: Any) -> Any:
-    """The states the plant reaches without a supervisor (requirements ignored)."""
-    enc = fixpoint.enc
-    relations = list(fixpoint.relation.values())
-    reached = fixpoint.initial
-    while True:
-        before = reached
-        for relation in relations:
-            reached |= enc.post(relation, reached)
-        if reached == before:
-            return reached
 
 
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
@@ -86,7 +74,8 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
         for location in automaton.locations:
             if (reachable & enc.at(location)) != enc.false:
                 continue
-            plant = _plant_reachable(fixpoint) if plant is None else plant
+            # the states the plant reaches without a supervisor (requirements ignored)
+            plant = reach(enc, fixpoint.initial, fixpoint.relation.values()) if plant is None else plant
             name = f"{automaton.name}.{location.name}"
             if (plant & enc.at(location)) == enc.false:
                 message, hint = f"state '{name}' can never be reached: no run of the model leads there", None

@@ -10,7 +10,7 @@ from typing import Any
 
 from robosc.plant.network import Event
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.explain import explain_from, pick
+from robosc.synthesis.explain import explain_from, layers_from, pick, walk_back
 from robosc.synthesis.result import Restriction, Step
 from robosc.synthesis.state import describe
 
@@ -24,57 +24,40 @@ def _steps(fp: Any) -> list[tuple[Event, Relation]]:
     ]
 
 
-def _layers(fp: Any) -> list[BDD]:
-    """Breadth-first layers of the controlled system from the initial state (layer k: the
-    states first reached after k events). Computed once per synthesis result."""
-    cached: list[BDD] | None = getattr(fp, "_layers", None)
-    if cached is not None:
-        return cached
-    enc = fp.enc
-    steps = _steps(fp)
-    layers = [fp.initial]
-    seen = fp.initial
-    while True:
-        image = enc.false
-        for _event, relation in steps:
-            image |= enc.post(relation, layers[-1])
-        frontier = image & ~seen
-        if frontier == enc.false:
-            break
-        layers.append(frontier)
-        seen |= frontier
-    fp._layers = layers
-    return layers
+def _controlled(fp: Any) -> tuple[list[tuple[Event, Relation]], list[BDD]]:
+    """The controlled system's transitions, and its breadth-first layers from the initial
+    state (layer k: the states first reached after k events). Kept per synthesis result."""
+    if "controlled layers" not in fp.memo:
+        steps = _steps(fp)
+        fp.memo["controlled layers"] = steps, layers_from(fp.enc, fp.initial, (r for _, r in steps))
+    found: tuple[list[tuple[Event, Relation]], list[BDD]] = fp.memo["controlled layers"]
+    return found
 
 
 def shortest_run(fp: Any, target: BDD) -> tuple[Any, tuple[Step, ...]] | None:
     """A state of ``target`` reached by the fewest events of the controlled system, and
     those events; None when the controlled system never reaches ``target``."""
     enc = fp.enc
-    network = enc.network
-    layers = _layers(fp)
+    steps, layers = _controlled(fp)
     depth = next((k for k, layer in enumerate(layers) if (layer & target) != enc.false), None)
     if depth is None:
         return None
     end = pick(fp, layers[depth] & target)
-    here = end
-    steps: list[Step] = []
-    relations = _steps(fp)
-    for layer in reversed(layers[:depth]):
-        here_bdd = fp.state(here)
-        for event, relation in relations:
-            before = layer & enc.pre(relation, here_bdd)
-            if before != enc.false:
-                steps.append(Step(event, describe(network, here)))
-                here = pick(fp, before)
-                break
-    steps.reverse()
-    return end, tuple(steps)
+    path = walk_back(fp, layers[: depth + 1], end, steps)
+    return end, tuple(Step(event, describe(enc.network, reached)) for event, reached in path)
 
 
 def why(fp: Any, event: Event) -> Restriction | None:
     """Why the supervisor disables controllable ``event`` somewhere the plant and the
-    requirements allow it; None when it never does."""
+    requirements allow it; None when it never does. Kept per result and event."""
+    key = ("why", event)
+    if key not in fp.memo:
+        fp.memo[key] = _why(fp, event)
+    found: Restriction | None = fp.memo[key]
+    return found
+
+
+def _why(fp: Any, event: Event) -> Restriction | None:
     enc = fp.enc
     network = enc.network
     into_bad = enc.pre(fp.relation[event], fp.bad)
