@@ -38,7 +38,6 @@ def check(model: Model) -> Iterator[Diagnostic]:
     for found in synthesis_inputs(model):
         if not _unranged(found.data.type) or any(isinstance(s, IndexStep) for s in found.data.steps):
             continue  # array elements: no_array
-            continue
         last = found.data.steps[-1] if found.data.steps else None
         where = last.property.span if isinstance(last, FieldStep) else found.communication.span
         what = (

@@ -81,18 +81,18 @@ def check_value_fits(reporter: Reporter, value: m.Expr, target: m.DataType, what
     if not t.fits(value.type, target):
         reporter.error(value.span, f"a value of type {value.type} does not fit {what} of type {target}", Code.TYPES)
         return
-    constant = constant_int(value)
+    constant = _constant_int(value)
     if ranges and isinstance(target, m.BasicType) and target.is_ranged_integer and constant is not None:
         assert target.low is not None and target.high is not None
         if not target.low <= constant <= target.high:
             reporter.error(value.span, f"{constant} is outside the range of {what} ({target})", Code.TYPES)
 
 
-def constant_int(expr: m.Expr) -> int | None:
+def _constant_int(expr: m.Expr) -> int | None:
     if isinstance(expr, m.Literal) and isinstance(expr.value, int) and not isinstance(expr.value, bool):
         return expr.value
     if isinstance(expr, m.Unary) and expr.op == "-":
-        inner = constant_int(expr.operand)
+        inner = _constant_int(expr.operand)
         return None if inner is None else -inner
     return None
 

@@ -9,7 +9,7 @@ from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
-from robosc.language.diagnostics import closest, did_you_mean
+from robosc.language.diagnostics import closest
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
@@ -97,8 +97,9 @@ class ExpressionResolver:
         candidates = list(self.component_names()) + list(self.enum_values)
         if own is not None:
             candidates += list(own.variables)
-        hint = did_you_mean(name, candidates) or self._member_elsewhere(name)
-        self.reporter.error(syntax.head.span, f"unknown name '{name}'", Code.UNKNOWN_NAME, hint)
+        self.reporter.unknown(
+            syntax.head.span, "name", name, candidates, otherwise=lambda: self._member_elsewhere(name)
+        )
         return m.Invalid(syntax.span)
 
     def _member_elsewhere(self, name: str, skip: str | None = None) -> str | None:
@@ -148,12 +149,13 @@ class ExpressionResolver:
             return m.StateRef(component.states[member.text], syntax.span)
         if member.text in component.variables:
             return self._variable(component.variables[member.text], rest, syntax.span)
-        hint = did_you_mean(member.text, [*component.states, *component.variables])
-        self.reporter.error(
+        self.reporter.unknown(
             member.span,
-            f"unknown state or variable '{member.text}' in component '{name}'",
-            Code.UNKNOWN_NAME,
-            hint or self._member_elsewhere(member.text, skip=name),
+            "state or variable",
+            member.text,
+            [*component.states, *component.variables],
+            f" in component '{name}'",
+            otherwise=lambda: self._member_elsewhere(member.text, skip=name),
         )
         return m.Invalid(syntax.span)
 

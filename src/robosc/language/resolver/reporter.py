@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, did_you_mean, error
@@ -16,6 +16,16 @@ class Reporter:
     def error(self, span: Span, message: str, code: Code, hint: str | None = None) -> None:
         self.diagnostics.append(error(span, message, code, hint))
 
-    def unknown(self, span: Span, what: str, name: str, candidates: Iterable[str], where: str = "") -> None:
-        """Rule 14: an unknown name, with the closest known one as a hint."""
-        self.error(span, f"unknown {what} '{name}'{where}", Code.UNKNOWN_NAME, did_you_mean(name, candidates))
+    def unknown(
+        self,
+        span: Span,
+        what: str,
+        name: str,
+        candidates: Iterable[str],
+        where: str = "",
+        otherwise: Callable[[], str | None] | None = None,
+    ) -> None:
+        """Rule 14: an unknown name, with the closest known one as a hint (else the hint of
+        ``otherwise``, e.g. a name in another component)."""
+        hint = did_you_mean(name, candidates) or (otherwise() if otherwise else None)
+        self.error(span, f"unknown {what} '{name}'{where}", Code.UNKNOWN_NAME, hint)
