@@ -2,40 +2,20 @@
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from conftest import EXAMPLES
+from mutate import SOURCES, mutate, pipeline
 from robosc.api import check_text, format_text
-
-TOKEN = re.compile(
-    r"\s+|[A-Za-z_^][A-Za-z0-9_]*|\d+\.\d+|\d+|\"[^\"]*\"|'[^']*'|//[^\n]*|:=|->|=>|!=|>=|<=|\.\.|.", re.S
-)
-SOURCES = {p.name: p.read_text() for p in sorted(EXAMPLES.glob("*.rscd"))}
 
 
 @st.composite
 def mutated(draw: st.DrawFn) -> tuple[str, str]:
+    """A bundled example with 1 to 4 token mutations (``benchmarks/mutate.py``)."""
     name = draw(st.sampled_from(sorted(SOURCES)))
-    tokens = TOKEN.findall(SOURCES[name])
-    for _ in range(draw(st.integers(1, 4))):
-        kind = draw(st.sampled_from(["delete", "duplicate", "swap", "bytes", "replace"]))
-        i = draw(st.integers(0, len(tokens) - 1))
-        j = draw(st.integers(0, len(tokens) - 1))
-        if kind == "delete":
-            del tokens[i]
-        elif kind == "duplicate":
-            tokens.insert(i, tokens[i])
-        elif kind == "swap":
-            tokens[i], tokens[j] = tokens[j], tokens[i]
-        elif kind == "replace":
-            tokens[i] = tokens[j]
-        else:
-            tokens.insert(i, draw(st.binary(min_size=1, max_size=6)).decode("latin-1"))
-    return name, "".join(tokens)
+    return name, mutate(SOURCES[name], draw(st.randoms(use_true_random=False)), draw(st.integers(1, 4)))
 
 
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -64,8 +44,6 @@ def test_mutated_models_through_check_synthesize_and_generate(tmp_path_factory, 
     a refusal by the ROS generator, or generated packages; never as another exception.
     (``python benchmarks/fuzz.py`` runs 10,000 of these.)"""
     import random
-
-    from mutate import mutate, pipeline
 
     text = mutate(SOURCES[name], random.Random(seed), count)
     outcome = pipeline(text, name, tmp_path_factory.mktemp("pipeline"))

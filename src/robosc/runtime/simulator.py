@@ -121,6 +121,12 @@ class Simulator:
             if self._violation is None:
                 self._violation = violation
 
+    def _since(self, before: int) -> Outcome:
+        """The events performed since ``before`` (an index into :attr:`events`), all of this
+        step, checked."""
+        events = tuple(self.events[before:])
+        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
+
     def _checked(self, outcome: Outcome) -> Outcome:
         violation, self._violation = self._violation, None
         if violation is not None:
@@ -171,8 +177,7 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         self.supervisor.tick()
-        events = tuple(self.events[before:])
-        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
+        return self._since(before)
 
     def allowed(self) -> list[str]:
         return list(self.supervisor.allowed())
@@ -186,8 +191,7 @@ class Simulator:
         before = len(self.events)
         if not self.supervisor.perform(name):
             return self._checked(Outcome((), (f"refused: {self.refusal(name)}",)))
-        events = tuple(self.events[before:])
-        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
+        return self._since(before)
 
     def refusal(self, name: str) -> str:
         """Why the supervisor does not allow controllable ``name`` now: the plant, the parts
@@ -227,8 +231,7 @@ class Simulator:
         before = len(self.events)
         if not self.supervisor.deliver(name, value, raw):
             return self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
-        events = tuple(self.events[before:])
-        return self._checked(Outcome(events, steps=(self.step,) * len(events)))
+        return self._since(before)
 
     def run(self, line: str) -> Outcome:
         """One script line: ``tick [N]``, an event name with optional data, ``expect NAME VALUE``
