@@ -177,7 +177,7 @@ def test_syntax_errors_are_one_clear_diagnostic(text: str, fragment: str):
     assert result.syntax is None
     assert len(result.diagnostics) == 1
     diagnostic = result.diagnostics[0]
-    assert fragment in diagnostic.message
+    assert fragment in f"{diagnostic.message}; {diagnostic.hint}"
     assert diagnostic.code == "syntax" and diagnostic.span.line >= 1 and diagnostic.span.column >= 1
 
 

@@ -9,18 +9,17 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from robosc.language.checks import run_checks
 from robosc.language.diagnostics import Diagnostic, render_text, sort_key
-from robosc.language.formatter import format_syntax
 from robosc.language.loader import InputError, LibraryFinder, read_source
 from robosc.language.model import Model
 from robosc.language.parser import parse_source
 from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
+from robosc.record import field, record
 
 if TYPE_CHECKING:
     from robosc.runtime.plan import Plan
@@ -44,7 +43,7 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
+@record
 class CheckResult:
     """The outcome of reading and checking one model file.
 
@@ -122,6 +121,8 @@ def format_text(text: str, path: str = "<text>") -> str | CheckResult:
     parsed = parse_source(source)
     if parsed.syntax is None:
         return CheckResult(None, parsed.diagnostics, {path: source})
+    from robosc.language.formatter import format_syntax
+
     return format_syntax(parsed.syntax)
 
 

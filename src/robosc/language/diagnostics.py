@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import difflib
-import json
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
 from enum import Enum
 
 from robosc.language.codes import Code
 from robosc.language.source import SourceFile, Span
+from robosc.record import record
 
 
 class Severity(str, Enum):
@@ -17,7 +15,7 @@ class Severity(str, Enum):
     WARNING = "warning"
 
 
-@dataclass(frozen=True)
+@record
 class Diagnostic:
     """One finding: where, how bad, what, and (optionally) a hint how to fix it.
 
@@ -47,6 +45,8 @@ def closest(name: str, candidates: Iterable[str]) -> str | None:
     """The known name closest to ``name``: a near spelling, else the shortest name that
     starts with it or contains it (``current`` -> ``current_correction``); None if none."""
     known = sorted(set(candidates))
+    import difflib
+
     close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
     if close:
         return close[0]
@@ -98,6 +98,8 @@ def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> st
 
 def to_json(diagnostics: Iterable[Diagnostic]) -> str:
     """The diagnostics as a JSON array (for editors and CI)."""
+    import json
+
     return json.dumps(
         [
             {

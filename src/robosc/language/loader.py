@@ -11,7 +11,6 @@ from __future__ import annotations
 import re
 import stat
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.language import syntax as s
@@ -20,6 +19,7 @@ from robosc.language.diagnostics import Diagnostic
 from robosc.language.parser import parse_source
 from robosc.language.resolver import LibraryUnit, Reporter, scope_of
 from robosc.language.source import SourceFile
+from robosc.record import record
 
 _LIBRARY_HEADER = re.compile(r"\A(?:\s+|//[^\n]*|/\*.*?\*/)*library\s+\^?([A-Za-z_][A-Za-z0-9_]*)", re.DOTALL)
 
@@ -69,7 +69,7 @@ def read_source(path: str | Path) -> SourceFile:
     return SourceFile(str(path), text)
 
 
-@dataclass
+@record(frozen=False)
 class LibraryFinder:
     """Finds, reads, parses and resolves the libraries a model imports (once each)."""
 

@@ -11,10 +11,10 @@ the parse tree. Entities that need to know their component carry its name in
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 from enum import Enum
 
 from robosc.language.source import Span
+from robosc.record import field, record
 
 # ---- data types ----------------------------------------------------------
 
@@ -27,7 +27,7 @@ class BasicKind(str, Enum):
     NONE = "none"
 
 
-@dataclass(frozen=True)
+@record
 class BasicType:
     kind: BasicKind
     low: int | None = None  # inclusive range, integers only
@@ -43,7 +43,7 @@ class BasicType:
         return self.kind.value
 
 
-@dataclass(frozen=True)
+@record
 class ArrayType:
     element: DataType
 
@@ -51,14 +51,14 @@ class ArrayType:
         return f"array({self.element})"
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Property:
     name: str
     type: DataType
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class ObjectType:
     name: str
     properties: tuple[Property, ...]
@@ -71,20 +71,20 @@ class ObjectType:
         return self.name
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class EnumValue:
     name: str
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class EnumRule:
     condition: Expr | None  # None: the default rule
     value: EnumValue
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class EnumType:
     """``enum E from T to { rules }``. ``values`` in order of first mention; the first is the default start value."""
 
@@ -105,7 +105,7 @@ class EnumType:
         return self.name
 
 
-@dataclass(frozen=True)
+@record
 class ErrorType:
     """The type of something that did not resolve; suppresses follow-up errors."""
 
@@ -123,7 +123,7 @@ NONE = BasicType(BasicKind.NONE)
 ERROR = ErrorType()
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Interface:
     """``interface name use RosType from ros_package``."""
 
@@ -136,12 +136,12 @@ class Interface:
 # ---- expressions -----------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class FieldStep:
     property: Property
 
 
-@dataclass(frozen=True)
+@record
 class IndexStep:
     index: int
 
@@ -149,14 +149,14 @@ class IndexStep:
 Step = FieldStep | IndexStep
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Literal:
     value: bool | int | float | str
     type: DataType
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class EnumLiteral:
     enum: EnumType
     value: EnumValue
@@ -167,7 +167,7 @@ class EnumLiteral:
         return self.enum
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class StateRef:
     """``Component.state``: true while the component's automaton is in ``state``."""
 
@@ -176,7 +176,7 @@ class StateRef:
     type: DataType = BOOLEAN
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class VariableRef:
     """A variable, optionally followed by property / index steps into its data."""
 
@@ -186,7 +186,7 @@ class VariableRef:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class DataRef:
     """``value...``: the data the middleware delivered (or the enum's raw input)."""
 
@@ -195,7 +195,7 @@ class DataRef:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Unary:
     op: str  # "!" or "-"
     operand: Expr
@@ -203,7 +203,7 @@ class Unary:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Binary:
     op: str  # or and = != > >= < <= => + - * /
     left: Expr
@@ -212,7 +212,7 @@ class Binary:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Invalid:
     """An expression that did not resolve (already reported)."""
 
@@ -243,7 +243,7 @@ class Direction(str, Enum):
     OUTGOING = "outgoing"  # the node publishes, the controller receives
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Message:
     name: str
     owner: str
@@ -266,7 +266,7 @@ class Message:
         return self.type
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Service:
     name: str
     owner: str
@@ -281,7 +281,7 @@ class Service:
         return self.identifier if self.identifier is not None else self.name
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Action:
     name: str
     owner: str
@@ -311,7 +311,7 @@ def data_types_of(communication: Communication) -> tuple[DataType, ...]:
 # ---- behaviour --------------------------------------------------------------
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class State:
     name: str
     owner: str
@@ -320,7 +320,7 @@ class State:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Variable:
     name: str
     owner: str
@@ -337,7 +337,7 @@ class ResultKind(str, Enum):
     CANCEL = "cancel"
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Assignment:
     variable: Variable
     steps: tuple[Step, ...]
@@ -345,7 +345,7 @@ class Assignment:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class ResultTransition:
     """``on RESULT from/to COMM do ... goto S``; ``source`` None means every state."""
 
@@ -357,7 +357,7 @@ class ResultTransition:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class TauTransition:
     """``transition if G goto S``: a controllable event of its own."""
 
@@ -370,7 +370,7 @@ class TauTransition:
 Transition = ResultTransition | TauTransition
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Automaton:
     states: tuple[State, ...]
     variables: tuple[Variable, ...]
@@ -392,7 +392,7 @@ class Automaton:
         return (t for t in self.transitions if t.source is None or t.source is state)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Component:
     """A component (a ROS node). ``library`` is set for an imported one."""
 
@@ -416,7 +416,7 @@ class RequirementKind(str, Enum):
     DISABLES = "disables"
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Requirement:
     """``E needs C`` or ``C disables E``, for each communication in ``communications``."""
 
@@ -426,21 +426,21 @@ class Requirement:
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class FieldValue:
     property: Property
     value: Expr | ObjectValue
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class ObjectValue:
     type: DataType
     fields: tuple[FieldValue, ...]
     span: Span = field(repr=False)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Provide:
     communication: Communication
     data: Expr | ObjectValue
@@ -451,7 +451,7 @@ class Provide:
 # ---- the whole model --------------------------------------------------------
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Model:
     """A checked robot (or library): components with everything they use resolved."""
 
@@ -518,7 +518,7 @@ def synthesis_variables(model: Model) -> dict[Variable, Expr]:
     return found
 
 
-@dataclass(frozen=True)
+@record
 class SynthesisInput:
     """Received data that reaches a synthesis variable: ``variable := ...value...``."""
 

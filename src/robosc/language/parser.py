@@ -5,13 +5,13 @@ from __future__ import annotations
 import gc
 import re
 import threading
-from dataclasses import dataclass
-from decimal import Decimal
 from functools import lru_cache
 from pathlib import Path
 
 import lark
 from lark import Lark, Token, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from robosc.record import record
 
 if lark.__version__.startswith("0."):  # pragma: no cover - an environment problem, not a model problem
     raise ImportError(
@@ -39,7 +39,7 @@ _OPERATORS = {"OR", "AND", "EQ", "NE", "GT", "GE", "LT", "LE", "IMPLIES", "PLUS"
 _EXPRESSION_STARTS = {"NAME", "INT", "DOUBLE", "STRING", "VALUE", "TRUE", "FALSE", "LPAR", "BANG", "MINUS"}
 
 
-@dataclass(frozen=True)
+@record
 class ParseResult:
     syntax: s.FileSyntax | None
     diagnostics: tuple[Diagnostic, ...]
@@ -65,7 +65,7 @@ def _lark() -> Lark:
     return Lark(
         GRAMMAR.read_text(encoding="utf-8"),
         parser="lalr",
-        lexer="contextual",
+        lexer="basic",
         propagate_positions=True,
         maybe_placeholders=False,
         cache=True,
@@ -136,6 +136,8 @@ def spelling_hint(text: str, pos: int) -> str | None:
     line_start = text.rfind("\n", 0, pos) + 1
     for found in _EXPONENT.finditer(text, line_start, pos + 40):
         if found.start() <= pos <= found.end():
+            from decimal import Decimal
+
             plain = format(Decimal(found.group()), "f")
             plain = plain if "." in plain else plain + ".0"
             return f"numbers have no exponent in RoboSC; write {plain}"

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from robosc.record import record
 
 
-@dataclass(frozen=True)
+@record
 class Span:
     """A region of a source file. Lines and columns start at 1; offsets at 0."""
 
@@ -21,7 +21,7 @@ class Span:
         return f"{self.path}:{self.line}:{self.column}"
 
 
-@dataclass(frozen=True)
+@record
 class SourceFile:
     """The text of one model file, as read."""
 

@@ -7,9 +7,8 @@ parses of differently laid-out text compare equal when they say the same thing
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from robosc.language.source import Span
+from robosc.record import field, record
 
 NO_SPAN = Span("", 0, 0, 0, 0, 0, 0)
 
@@ -18,7 +17,7 @@ def _span() -> Span:
     return field(default=NO_SPAN, compare=False, repr=False)
 
 
-@dataclass(frozen=True)
+@record
 class Name:
     """An identifier as written (``^`` escapes already removed)."""
 
@@ -26,7 +25,7 @@ class Name:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class Comment:
     text: str
     span: Span = _span()
@@ -35,13 +34,13 @@ class Comment:
 # ---- expressions ---------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class IntLit:
     value: int
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class DoubleLit:
     text: str  # as written, e.g. "0.25"; keeps "100.0" distinct from "100.00" for fmt
     span: Span = _span()
@@ -51,26 +50,26 @@ class DoubleLit:
         return float(self.text)
 
 
-@dataclass(frozen=True)
+@record
 class StrLit:
     raw: str  # with its quotes, as written
     value: str
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class BoolLit:
     value: bool
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class MemberStep:
     name: Name
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class IndexStep:
     index: int
     span: Span = _span()
@@ -79,7 +78,7 @@ class IndexStep:
 Step = MemberStep | IndexStep
 
 
-@dataclass(frozen=True)
+@record
 class Access:
     """``head.step[n]...``; ``head`` is None for the keyword ``value``."""
 
@@ -88,14 +87,14 @@ class Access:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class Unary:
     op: str  # "!" or "-"
     operand: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class Binary:
     op: str
     left: Expr
@@ -103,7 +102,7 @@ class Binary:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class Paren:
     inner: Expr
     span: Span = _span()
@@ -114,7 +113,7 @@ Expr = IntLit | DoubleLit | StrLit | BoolLit | Access | Unary | Binary | Paren
 # ---- data types ----------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class BasicTypeSyntax:
     kind: str  # string, boolean, double, none, integer
     low: int | None = None
@@ -122,13 +121,13 @@ class BasicTypeSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ArrayTypeSyntax:
     element: TypeSyntax
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class NamedTypeSyntax:
     name: Name
     span: Span = _span()
@@ -137,28 +136,28 @@ class NamedTypeSyntax:
 TypeSyntax = BasicTypeSyntax | ArrayTypeSyntax | NamedTypeSyntax
 
 
-@dataclass(frozen=True)
+@record
 class PropertySyntax:
     name: Name
     type: TypeSyntax
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ObjectTypeSyntax:
     name: Name
     properties: tuple[PropertySyntax, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class EnumRuleSyntax:
     condition: Expr | None  # None for the default rule
     value: Name
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class EnumTypeSyntax:
     name: Name
     source: TypeSyntax
@@ -166,7 +165,7 @@ class EnumTypeSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class InterfaceSyntax:
     name: Name
     ros_type: Name
@@ -177,7 +176,7 @@ class InterfaceSyntax:
 # ---- communication -------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class MessageSyntax:
     direction: str  # "incoming" or "outgoing"
     name: Name
@@ -187,7 +186,7 @@ class MessageSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ServiceSyntax:
     name: Name
     identifier: StrLit | None
@@ -197,7 +196,7 @@ class ServiceSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ActionSyntax:
     name: Name
     identifier: StrLit | None
@@ -213,7 +212,7 @@ CommunicationSyntax = MessageSyntax | ServiceSyntax | ActionSyntax
 # ---- behaviour -----------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class VariableSyntax:
     name: Name
     type: TypeSyntax
@@ -221,14 +220,14 @@ class VariableSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class AssignmentSyntax:
     target: Access
     value: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ResultTransitionSyntax:
     result: str  # request, response, feedback, error, cancel
     preposition: str  # from, to
@@ -238,7 +237,7 @@ class ResultTransitionSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class TauTransitionSyntax:
     guard: Expr | None
     target: Name | None
@@ -248,7 +247,7 @@ class TauTransitionSyntax:
 TransitionSyntax = ResultTransitionSyntax | TauTransitionSyntax
 
 
-@dataclass(frozen=True)
+@record
 class StateSyntax:
     name: Name
     initial: bool
@@ -260,20 +259,20 @@ class StateSyntax:
 BehaviourItem = VariableSyntax | StateSyntax | ResultTransitionSyntax | TauTransitionSyntax
 
 
-@dataclass(frozen=True)
+@record
 class BehaviourSyntax:
     items: tuple[BehaviourItem, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class LocalComponentSyntax:
     name: Name
     items: tuple[BehaviourSyntax | CommunicationSyntax, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ImportedComponentSyntax:
     name: Name
     library: Name
@@ -286,14 +285,14 @@ ComponentSyntax = LocalComponentSyntax | ImportedComponentSyntax
 # ---- robot-level statements ----------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class EventsSyntax:
     names: tuple[Name, ...]
     is_set: bool
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class RequirementSyntax:
     kind: str  # "needs" or "disables"
     events: EventsSyntax
@@ -301,20 +300,20 @@ class RequirementSyntax:
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class FieldValueSyntax:
     name: Name
     value: Expr | ObjectValueSyntax
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ObjectValueSyntax:
     fields: tuple[FieldValueSyntax, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True)
+@record
 class ProvideSyntax:
     communication: Name
     data: Expr | ObjectValueSyntax
@@ -333,7 +332,7 @@ Definition = (
 )
 
 
-@dataclass(frozen=True)
+@record
 class FileSyntax:
     """One parsed file: a ``robot`` or a ``library``."""
 

@@ -7,7 +7,6 @@ provide statements, which may name anything declared before.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Protocol
 
 from robosc.language import model as m
@@ -21,13 +20,14 @@ from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.statements import StatementResolver
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
+from robosc.record import record
 
 __all__ = ["FileScope", "LibraryProvider", "LibraryUnit", "Reporter", "ResolveResult", "resolve", "scope_of"]
 
 _NOT_AVAILABLE = ""  # lookup answer for a component whose import failed (already reported)
 
 
-@dataclass
+@record(frozen=False)
 class LibraryUnit:
     """A parsed library with its data types and interfaces resolved."""
 
@@ -58,7 +58,7 @@ class LibraryProvider(Protocol):
         """The library called ``name``, or None after reporting why it cannot be had."""
 
 
-@dataclass(frozen=True)
+@record
 class ResolveResult:
     model: m.Model
     diagnostics: tuple[Diagnostic, ...]
@@ -71,7 +71,7 @@ def scope_of(file: s.FileSyntax, reporter: Reporter) -> FileScope:
     return scope
 
 
-@dataclass
+@record(frozen=False)
 class _Entry:
     syntax: s.LocalComponentSyntax | None  # None when the import failed
     tables: ComponentTables

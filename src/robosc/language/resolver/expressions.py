@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from robosc.language import model as m
 from robosc.language import syntax as s
@@ -13,13 +12,14 @@ from robosc.language.diagnostics import closest
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
+from robosc.record import record
 
 # Finds a component by the name used in an expression: its tables, or a
 # message saying why it cannot be used there, or None when no such component exists.
 ComponentLookup = Callable[[str], "ComponentTables | str | None"]
 
 
-@dataclass(frozen=True)
+@record
 class ExprContext:
     component: ComponentTables | None  # whose variables are named directly
     value_type: m.DataType | None  # the type of ``value``; None where ``value`` means nothing

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from robosc.language import model as m
+from robosc.record import field, record
 
 
-@dataclass
+@record(frozen=False)
 class ComponentTables:
     name: str  # the component's name in the robot (its owner label)
     states: dict[str, m.State] = field(default_factory=dict)
