@@ -9,12 +9,11 @@ action plants have ``c_trigger``, ``u_response``, ``u_error``, ``c_reset`` (and
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from robosc.codegen.templating import environment
 from robosc.language import model as m
 from robosc.language.render import literal
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, EventKind, Network
+from robosc.record import record
 
 # Reserved words of CIF 3; a name that is one gets CIF's '$' escape.
 CIF_KEYWORDS = frozenset(
@@ -138,7 +137,7 @@ def _local_event(event: Event) -> str:
     return event.name.rsplit(".", 1)[1]
 
 
-@dataclass
+@record(frozen=False)
 class _Names:
     network: Network
 

@@ -11,11 +11,11 @@ writes the files.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
 from robosc.language.source import Span
+from robosc.record import record
 from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
 from robosc.runtime.onboard import VERSION
 from robosc.runtime.onboard.messages import wire_type
@@ -37,7 +37,7 @@ class RosError(Exception):
         self.span = span
 
 
-@dataclass(frozen=True)
+@record
 class RosPlan:
     plan: Plan
     ros: int  # 1 or 2

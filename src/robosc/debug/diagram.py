@@ -9,7 +9,6 @@ view can switch styles on the SVG without laying it out again.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
@@ -17,10 +16,11 @@ from robosc.debug.layout import to_svg
 from robosc.language import model as m
 from robosc.language.render import render, steps
 from robosc.plant.network import Automaton, AutomatonKind, Event, event_of
+from robosc.record import record
 from robosc.synthesis.result import SynthesisResult
 
 
-@dataclass(frozen=True)
+@record
 class Location:
     id: str
     name: str
@@ -28,7 +28,7 @@ class Location:
     marked: bool
 
 
-@dataclass(frozen=True)
+@record
 class Transition:
     id: str
     source: str  # location name
@@ -45,7 +45,7 @@ class Transition:
         return self.added is not None
 
 
-@dataclass(frozen=True)
+@record
 class Diagram:
     name: str  # the automaton's name in the network
     kind: str  # "component", "message", "service", "action"

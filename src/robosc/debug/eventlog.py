@@ -10,9 +10,10 @@ from __future__ import annotations
 import json
 import stat
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, BinaryIO
+
+from robosc.record import record
 
 CHANNEL = "/robosc/events"
 SCHEMA = {
@@ -36,7 +37,7 @@ class LogError(Exception):
     """The log cannot be read; the message names the file and line."""
 
 
-@dataclass(frozen=True)
+@record
 class Record:
     time: float
     event: str
@@ -120,8 +121,8 @@ def write_mcap(records: Iterable[Record | dict[str, Any]], handle: BinaryIO) -> 
     """Write records as MCAP; returns how many."""
     writer = McapLog(handle)
     count = 0
-    for record in records:
-        writer.write(record.as_json() if isinstance(record, Record) else record)
+    for item in records:
+        writer.write(item.as_json() if isinstance(item, Record) else item)
         count += 1
     writer.close()
     return count

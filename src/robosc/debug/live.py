@@ -7,15 +7,15 @@ from __future__ import annotations
 
 import json
 import re
-from dataclasses import dataclass
 from pathlib import Path
 
 from robosc.codegen.templating import environment
 from robosc.debug.diagram import Diagram, diagrams, svg
+from robosc.record import record
 from robosc.synthesis.result import SynthesisResult
 
 
-@dataclass(frozen=True)
+@record
 class Card:
     diagram: Diagram
     svg: str

@@ -16,13 +16,12 @@ give the variable any value of its domain.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant.domains import domain, initial_value
 from robosc.plant.expressions import NO_SPAN, all_of, any_of, negate, reads_data, variables_in
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, EventKind, Network, Requirement, Update
+from robosc.record import field, record
 
 R = m.ResultKind
 K = EventKind
@@ -32,7 +31,7 @@ def _location(name: str, owner: str, initial: bool = False, marked: bool = False
     return m.State(name, owner, initial, marked, NO_SPAN)
 
 
-@dataclass
+@record(frozen=False)
 class _Builder:
     model: m.Model
     events: list[Event] = field(default_factory=list)

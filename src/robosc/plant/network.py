@@ -9,10 +9,10 @@ construction, or added by synthesis -- is an ordinary model expression.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
 from enum import Enum
 
 from robosc.language import model as m
+from robosc.record import field, record
 
 
 class EventKind(str, Enum):
@@ -27,7 +27,7 @@ class EventKind(str, Enum):
     PROVIDE = "provide"  # a data plant choosing the data to send
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Event:
     name: str
     controllable: bool
@@ -40,7 +40,7 @@ class Event:
         return f"Event({self.name})"
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Update:
     """``variable := value``; ``value`` None means any value of the variable's domain
     (the update depends on data received from the middleware)."""
@@ -49,7 +49,7 @@ class Update:
     value: m.Expr | None
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Edge:
     source: m.State
     target: m.State
@@ -66,7 +66,7 @@ class AutomatonKind(str, Enum):
     DATA = "data"
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Automaton:
     name: str
     kind: AutomatonKind
@@ -81,7 +81,7 @@ class Automaton:
         return tuple(loc for loc in self.locations if loc.marked)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Requirement:
     """A state-event exclusion: ``event`` may occur only where ``condition`` holds."""
 
@@ -91,7 +91,7 @@ class Requirement:
     origin: m.Requirement | None = None
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Network:
     model: m.Model
     events: tuple[Event, ...]

@@ -16,12 +16,11 @@ rules ``enum<N>_<Enum>``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from robosc.language import model as m
 from robosc.language.source import Span
 from robosc.plant.domains import initial_value
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
+from robosc.record import record
 from robosc.runtime.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
 from robosc.synthesis.result import SynthesisResult
 
@@ -37,7 +36,7 @@ GROUPS = {
 }
 
 
-@dataclass(frozen=True)
+@record
 class Field:
     """One field of the supervisor's state."""
 
@@ -48,7 +47,7 @@ class Field:
     synthesis: bool = True  # takes part in synthesis (variables only)
 
 
-@dataclass(frozen=True)
+@record
 class Part:
     """What one automaton does on one event, and where it can."""
 
@@ -57,7 +56,7 @@ class Part:
     gates: list[str]
 
 
-@dataclass(frozen=True)
+@record
 class Communication:
     name: str
     kind: str  # "outgoing", "incoming", "service", "action"
@@ -75,7 +74,7 @@ class Communication:
         return f"{self.package}/{self.ros_type}" if self.package and self.ros_type else None
 
 
-@dataclass(frozen=True)
+@record
 class EventPlan:
     name: str
     method: str
@@ -112,7 +111,7 @@ class EventPlan:
         return self.moves is not None and bool(self.moves) and not self.sends and self.data is None
 
 
-@dataclass(frozen=True)
+@record
 class Conversion:
     """An enum's rules: raw middleware data to one of the enum's values."""
 
@@ -123,7 +122,7 @@ class Conversion:
     default: str
 
 
-@dataclass(frozen=True)
+@record
 class DataChoice:
     location: str
     event: str  # the provide event's name
@@ -133,7 +132,7 @@ class DataChoice:
     checks: tuple[str, ...] = ()  # Python conditions on ``data``: each computed number is finite
 
 
-@dataclass(frozen=True)
+@record
 class DataPlant:
     field: str
     communication: str
@@ -161,7 +160,7 @@ class DataPlant:
         return text + "None"
 
 
-@dataclass(frozen=True)
+@record
 class Plan:
     robot: str
     source: str  # the model's path, for the header

@@ -14,9 +14,9 @@ import keyword
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 
 from robosc.language import model as m
+from robosc.record import record
 
 _OPERATORS = {
     "=": "==",
@@ -70,7 +70,7 @@ def constant(value: object) -> str:
     raise TypeError(f"no Python literal for {value!r}")
 
 
-@dataclass(frozen=True)
+@record
 class Names:
     """Where the generated code keeps each location and variable (``self.<field>``)."""
 

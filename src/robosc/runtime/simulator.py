@@ -20,13 +20,13 @@ import random
 import time
 import types
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any, TextIO
 
 from robosc.language import model as m
 from robosc.language.diagnostics import closest
 from robosc.language.render import render
 from robosc.plant.network import Network, received_type
+from robosc.record import record
 from robosc.runtime.module import module_name, render_module
 from robosc.runtime.onboard.values import Data, plain
 from robosc.runtime.plan import Plan
@@ -47,7 +47,7 @@ class CommandError(Exception):
     """A script line or typed command that the simulator cannot read."""
 
 
-@dataclass(frozen=True)
+@record
 class Outcome:
     """What one command did: the events performed, and messages for the user."""
 

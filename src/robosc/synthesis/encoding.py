@@ -12,13 +12,13 @@ a map from each value they can take to the BDD of where they take it.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from dd import cudd
 
 from robosc.language import model as m
 from robosc.plant.network import Automaton, Network
+from robosc.record import record
 from robosc.synthesis.evaluate import ARITHMETIC, COMPARE
 from robosc.synthesis.ordering import interaction_order
 
@@ -26,7 +26,7 @@ BDD = Any  # dd.cudd.Function
 Item = Automaton | m.Variable
 
 
-@dataclass(frozen=True)
+@record
 class Field:
     """The bits of one automaton's location or one variable's value."""
 
@@ -40,7 +40,7 @@ class Field:
         return tuple(b + "'" for b in self.bits)
 
 
-@dataclass(frozen=True)
+@record
 class Relation:
     """A transition relation that changes only ``bits``: every other bit keeps its value.
 

@@ -8,10 +8,10 @@ import itertools
 import time
 from collections import deque
 from collections.abc import Iterator
-from dataclasses import dataclass
 from typing import Any
 
 from robosc.plant.network import Edge, Event, Network
+from robosc.record import record
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.result import SynthesisResult
 from robosc.synthesis.state import NetworkState, initial_state
@@ -73,7 +73,7 @@ def successors(network: Network, state: NetworkState, event: Event) -> Iterator[
                 yield NetworkState(tuple(new_locations), tuple(new_values))
 
 
-@dataclass
+@record(frozen=False)
 class ExplicitSupervisor:
     network: Network
     states: list[NetworkState]

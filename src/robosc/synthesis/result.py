@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 from robosc.language import model as m
 from robosc.plant.network import Event, Network
+from robosc.record import field, record
 from robosc.synthesis.state import NetworkState
 
 
-@dataclass(frozen=True)
+@record
 class EventGuard:
     """For one controllable event: what the user's model says, and what synthesis added.
 
@@ -26,13 +26,13 @@ class EventGuard:
     added: m.Expr | None
 
 
-@dataclass(frozen=True)
+@record
 class Step:
     event: Event
     state: str  # the state reached, described
 
 
-@dataclass(frozen=True)
+@record
 class Explanation:
     """Why synthesis failed: the reason, and a shortest sequence of uncontrollable
     events from the initial state to a state that must be avoided."""
@@ -42,7 +42,7 @@ class Explanation:
     path: tuple[Step, ...]
 
 
-@dataclass(frozen=True)
+@record
 class Restriction:
     """Why synthesis added a condition to a controllable event.
 
@@ -61,7 +61,7 @@ class Restriction:
     never: bool = False
 
 
-@dataclass(frozen=True)
+@record
 class SynthesisResult:
     network: Network
     method: str  # "symbolic" or "explicit"

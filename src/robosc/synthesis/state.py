@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from robosc.language import model as m
 from robosc.language.render import literal
 from robosc.plant.network import AutomatonKind, Network
+from robosc.record import record
 
 
-@dataclass(frozen=True)
+@record
 class NetworkState:
     locations: tuple[m.State, ...]  # in the order of network.automata
     values: tuple[object, ...]  # in the order of network.variables

@@ -13,19 +13,19 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterable
-from dataclasses import dataclass, field
 from typing import Any
 
 from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
+from robosc.record import field, record
 from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
 from robosc.synthesis.state import NetworkState
 
 
-@dataclass
+@record(frozen=False)
 class Fixpoint:
     """The BDDs of one synthesis run, kept for questions asked afterwards."""
 
