@@ -128,7 +128,15 @@ CASES = {
                 ),
                 "requirement act needs C.n > 1",
             ),
-            "the data of 'm' is an array, and it reaches 'n'",
+            "the data of 'm' is array(integer(0..3)); a communication's data is an object",
+        ),
+        (
+            robot(component("variable xs: array(boolean) initial marked state a {}")),
+            "variable 'xs' has the array type array(boolean)",
+        ),
+        (
+            robot(component(OK_STATES, "service s with request: boolean, response: array(double) links trigger")),
+            "the data of 's' is array(double)",
         ),
         (
             robot(
@@ -289,10 +297,12 @@ VALID = {
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
     "enum-values": robot("datatype enum E from double to { value > 1.0 or value < -1.0 -> big default -> small }"),
     "no-array": robot(
+        "datatype object Scan { ranges: array(double) }",
+        "interface scan use LaserScan from sensor_msgs",
         component(
-            "variable xs: array(integer) initial marked state a { on response from m do xs := value }",
-            "outgoing message m with type: array(integer)",
-        )
+            "variable d: double = 0.0 initial marked state a { on response from m do d := value.ranges[0] }",
+            "outgoing message m with type: Scan links scan",
+        ),
     ),
     "no-object-variable": robot(
         "datatype object P { x: double }",

@@ -50,7 +50,7 @@ class Code(str, Enum):
     # further rules the original enforces
     ENUM_DEFAULT = "enum-default", "an enum has exactly one default rule"
     ENUM_VALUES = "enum-values", "an enum value is named by one rule only"
-    NO_ARRAY = "no-array", "array data cannot reach synthesis (the original's NO_ARRAY_ALLOWED)"
+    NO_ARRAY = "no-array", "arrays only inside objects: no array variable or array message, none reaching synthesis"
     NO_OBJECT_VARIABLE = "no-object-variable", "a variable cannot have an object type"
     CONSTANT = "constant", "a constant part of an expression cannot be computed (division by zero)"
     ROS = "ros", "the model cannot be generated for ROS as it is (code generation)"

@@ -56,7 +56,7 @@ CHECKS: tuple[Check, ...] = (
     enum_default.check,  # section 4: exactly one default rule per enum
     constant_values.check,  # a constant divisor of zero can never be computed
     enum_values.check,  # an enum value is named by one rule
-    no_array.check,  # array data cannot reach synthesis
+    no_array.check,  # arrays only inside objects (variables, communications, synthesis inputs)
     object_variables.check,  # no variable of object type
     variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
     implicit_start.check,  # warning: an enum variable read with no initial value

@@ -1,7 +1,15 @@
-"""Array data cannot reach synthesis (the original's NO_ARRAY_ALLOWED): received data
-assigned to a variable that takes part in synthesis is not an array or an element of one.
-(Variables of array type in synthesis are rule 10.) Turn array data into a few named
-values with an enum instead: ``datatype enum E from LaserScan to { ... }``."""
+"""Arrays only describe middleware data, inside an object (the original's NO_ARRAY_ALLOWED, in
+its UsedDataTypeRule and NoArrayAllowedRule):
+
+* a variable cannot have an array type;
+* a communication's data (a message's type, a service's or action's request, response or
+  feedback) cannot be an array as a whole: ROS messages are objects, so ``type: array(T)``
+  describes nothing a node can publish;
+* received data assigned to a variable that takes part in synthesis is not an array or an
+  element of one.
+
+Turn array data into a few named values with an enum instead: ``datatype enum E from
+LaserScan to { ... }``."""
 
 from __future__ import annotations
 
@@ -10,12 +18,52 @@ from collections.abc import Iterator
 
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
-from robosc.language.model import ArrayType, FieldStep, IndexStep, Model, synthesis_inputs
+from robosc.language.model import ArrayType, FieldStep, IndexStep, Model, data_types_of, synthesis_inputs
 from robosc.language.source import Span
+
+_HINT = (
+    "turn the array into a few named values with an enum, as in "
+    "'datatype enum E from T to { value.ranges[0] < 0.5 -> near, default -> far }'"
+)
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    reported: set[Span] = set()
+    yield from _array_variables(model)
+    yield from _array_communications(model)
+    yield from _array_inputs(model)
+
+
+def _array_variables(model: Model) -> Iterator[Diagnostic]:
+    for component in model.components:
+        for automaton in component.behaviours:
+            for variable in automaton.variables:
+                if isinstance(variable.type, ArrayType):
+                    yield error(
+                        variable.span,
+                        f"variable '{variable.name}' has the array type {variable.type}; arrays only describe "
+                        "middleware data, a variable cannot hold one",
+                        Code.NO_ARRAY,
+                        "keep the elements you need, as in 'variable d: double' with 'd := value.ranges[0]'",
+                    )
+
+
+def _array_communications(model: Model) -> Iterator[Diagnostic]:
+    for component in model.components:
+        for communication in component.communications:
+            arrays = [str(t) for t in data_types_of(communication) if isinstance(t, ArrayType)]
+            if arrays:
+                yield error(
+                    communication.span,
+                    f"the data of '{communication.name}' is {arrays[0]}; a communication's data is an object "
+                    "(a ROS message), a basic type or none, not an array",
+                    Code.NO_ARRAY,
+                    "describe the ROS message as an object with the array as a property, as in "
+                    "'datatype object Scan { ranges: array(double) }'",
+                )
+
+
+def _array_inputs(model: Model) -> Iterator[Diagnostic]:
+    reported: set[Span] = {c.span for comp in model.components for c in comp.communications}
     for found in synthesis_inputs(model):
         steps = found.data.steps
         if not isinstance(found.data.type, ArrayType) and not any(isinstance(s, IndexStep) for s in steps):
@@ -37,6 +85,5 @@ def check(model: Model) -> Iterator[Diagnostic]:
             f"{what} is an array, and it reaches '{found.variable.name}', which takes part in synthesis "
             f"(at {found.data.span}); synthesis cannot read array data",
             Code.NO_ARRAY,
-            "turn the array into a few named values with an enum, as in "
-            "'datatype enum E from T to { value.ranges[0] < 0.5 -> near, default -> far }'",
+            _HINT,
         )

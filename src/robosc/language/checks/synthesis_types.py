@@ -6,14 +6,23 @@ from collections.abc import Iterator
 
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
-from robosc.language.model import BasicKind, BasicType, EnumType, ErrorType, Model, synthesis_variables
+from robosc.language.model import (
+    ArrayType,
+    BasicKind,
+    BasicType,
+    EnumType,
+    ErrorType,
+    Model,
+    ObjectType,
+    synthesis_variables,
+)
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
     for variable, use in synthesis_variables(model).items():
         t = variable.type
-        if isinstance(t, (EnumType, ErrorType)):
-            continue
+        if isinstance(t, (EnumType, ErrorType, ArrayType, ObjectType)):
+            continue  # arrays and objects are refused for every variable: no-array, no-object-variable
         if isinstance(t, BasicType) and t.kind in (BasicKind.BOOLEAN, BasicKind.INTEGER):
             continue  # unranged integers: rule 9
         yield error(
