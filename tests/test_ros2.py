@@ -209,7 +209,9 @@ def test_pick_station_service_action_and_announcement(ros2: Ros2, tmp_path: Path
     assert ros2.spin_until(lambda: bool(announcements), 10), "the full bin was not announced"
     assert announcements[0].data == "the bin is full"
     assert set(robot.goals) == {1}
-    # the light goes on while the arm picks and off after: alternating requests
+    # the light goes on while the arm picks and off after: alternating requests (the light
+    # is switched off after the pick's result, which may come after the announcement)
+    assert ros2.spin_until(lambda: len(robot.light_calls) >= 4, 10), f"light calls: {robot.light_calls}"
     assert robot.light_calls[:4] == [True, False, True, False]
     assert ros2.spin_until(lambda: _state(states).get("Arm") == "full", 5)
     assert _state(states)["Arm.picks"] == 3
