@@ -468,6 +468,10 @@ class Model:
     def communications(self) -> tuple[Communication, ...]:
         return tuple(c for comp in self.components for c in comp.communications)
 
+    @property
+    def variables(self) -> tuple[Variable, ...]:
+        return tuple(v for comp in self.components for a in comp.behaviours for v in a.variables)
+
     def component(self, name: str) -> Component | None:
         return next((c for c in self.components if c.name == name), None)
 

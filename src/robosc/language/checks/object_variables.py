@@ -11,13 +11,11 @@ from robosc.language.model import Model, ObjectType
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    for component in model.components:
-        for automaton in component.behaviours:
-            for variable in automaton.variables:
-                if isinstance(variable.type, ObjectType):
-                    yield error(
-                        variable.span,
-                        f"variable '{variable.name}' has the object type {variable.type}; a variable cannot hold an object",
-                        Code.NO_OBJECT_VARIABLE,
-                        "keep the properties you need, as in 'variable x: double' with 'x := value.position.x'",
-                    )
+    for variable in model.variables:
+        if isinstance(variable.type, ObjectType):
+            yield error(
+                variable.span,
+                f"variable '{variable.name}' has the object type {variable.type}; a variable cannot hold an object",
+                Code.NO_OBJECT_VARIABLE,
+                "keep the properties you need, as in 'variable x: double' with 'x := value.position.x'",
+            )
