@@ -185,7 +185,6 @@ def _define(cls: _T, eq: bool, frozen: bool) -> _T:
         seen_default = seen_default or not options.required
     names = tuple(fields)
     cls.__record_options__ = fields  # type: ignore[attr-defined]
-    cls.__record_fields__ = names  # type: ignore[attr-defined]
     cls.__record_shown__ = tuple(n for n in names if fields[n].repr)  # type: ignore[attr-defined]
     cls.__match_args__ = names  # type: ignore[attr-defined,misc]
     cls.__init__ = _make_init(cls, fields)  # type: ignore[misc]
@@ -209,7 +208,7 @@ def _define(cls: _T, eq: bool, frozen: bool) -> _T:
             cls.__eq__ = __eq__  # type: ignore[assignment,method-assign]
         if not frozen:  # as a dataclass: mutable and compared by value, so not hashable
             cls.__hash__ = None  # type: ignore[assignment]
-        elif "__hash__" not in cls.__dict__ or cls.__dict__["__hash__"] is None:
+        elif cls.__dict__.get("__hash__") is None:  # absent, or None because the class defines __eq__
             cls.__hash__ = __hash__  # type: ignore[assignment,method-assign]
     return cls
 
