@@ -1,0 +1,131 @@
+"""A world and the generated supervisors in one process, without middleware: the quickest
+way to see a controller drive its robot (and what ``robosc sim --ros none`` runs).
+
+The supervisors are the very module ``robosc generate`` writes (loaded from the plan);
+messages go to them and commands come from them by topic name, as they would over ROS.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+from typing import Any
+
+from robosc.sim.simulation import Message, Simulation
+
+# the roles of the simulator's topics that take commands, and what they do
+COMMAND_ROLES = ("cmd_vel", "rotate_left", "rotate_right")
+
+
+def number(value: Any) -> float:
+    """A command's number; anything that is not one reads NaN (the robot then stops)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return math.nan
+    return float(value)
+
+
+def field_of(data: Any, *path: str) -> Any:
+    """``data.linear.x`` of a Twist given as nested dicts or as message objects; absent: 0."""
+    for name in path:
+        if data is None:
+            return 0.0
+        data = data.get(name, 0.0) if isinstance(data, dict) else getattr(data, name, 0.0)
+    return 0.0 if data is None else data
+
+
+def apply_command(sim: Simulation, robot: int, role: str, data: Any) -> None:
+    """A command published on the topic of ``role`` reaches robot ``robot``'s base."""
+    if role == "cmd_vel":
+        sim.command_velocity(robot, number(field_of(data, "linear", "x")), number(field_of(data, "angular", "z")))
+    elif role == "rotate_left":
+        sim.rotate(robot, number(data))
+    elif role == "rotate_right":
+        sim.rotate(robot, -number(data))
+
+
+def scan_message(sim: Simulation, ranges: list[float]) -> dict[str, Any]:
+    """A LaserScan's fields, as sensor_msgs/LaserScan names them."""
+    lidar = sim.world.robot.lidar
+    increment = 2 * math.pi / lidar.beams
+    return {
+        "angle_min": 0.0,
+        "angle_max": increment * (lidar.beams - 1),
+        "angle_increment": increment,
+        "time_increment": 0.0,
+        "scan_time": 1.0 / lidar.rate,
+        "range_min": lidar.range_min,
+        "range_max": lidar.range_max,
+        "ranges": ranges,
+    }
+
+
+class LocalRun:
+    """``sim.robots`` instances of the generated ``Robot`` class driving the simulation."""
+
+    def __init__(self, sim: Simulation, module: types.ModuleType, rate: float = 10.0, seed: int = 0) -> None:
+        from robosc.runtime.onboard.values import Data
+
+        self.sim = sim
+        self.rate = rate
+        self._data = Data
+        topics = sim.world.topics
+        role_of = {name.lstrip("/"): role for role, name in topics.items()}
+        base = module.Robot
+        self.listeners: dict[str, list[str]] = {}  # role -> communications that receive it
+        self.commands: dict[str, str] = {}  # communication -> role
+        for comm in base.COMMUNICATIONS:
+            role = role_of.get(comm.ros_name.lstrip("/"))
+            if role is None:
+                continue
+            if comm.kind == "outgoing":
+                self.listeners.setdefault(role, []).append(comm.name)
+            elif comm.kind == "incoming" and role in COMMAND_ROLES:
+                self.commands[comm.name] = role
+        run = self
+
+        class Driven(base):  # type: ignore[valid-type, misc]
+            index = 0
+
+            def send(self, name: str, data: Any) -> bool:
+                role = run.commands.get(name)
+                if role is not None:
+                    apply_command(run.sim, self.index, role, data)
+                return True
+
+        self.robots = []
+        for i in range(sim.robots):
+            robot = Driven(seed=seed + i, warn=lambda text: None)
+            robot.index = i
+            self.robots.append(robot)
+        self._next_tick = 0.0
+
+    def deliver(self, message: Message) -> None:
+        robot = self.robots[message.robot]
+        value = message.value
+        if message.role == "scan":
+            value = self._data(scan_message(self.sim, value))
+        for name in self.listeners.get(message.role, ()):
+            robot.deliver(name, value)
+
+    def press(self, robot: int, pressed: bool) -> None:
+        for message in self.sim.press(robot, pressed):
+            self.deliver(message)
+
+    def step(self) -> None:
+        for message in self.sim.step():
+            self.deliver(message)
+        if self.sim.time + 1e-9 >= self._next_tick:
+            self._next_tick += 1.0 / self.rate
+            for robot in self.robots:
+                robot.tick()
+
+    def run(self, timeout: float) -> bool:
+        """Until every robot reached the goal (True), one collided or ``timeout`` simulated
+        seconds passed (False)."""
+        while self.sim.time < timeout:
+            self.step()
+            if self.sim.any_collided:
+                return False
+            if self.sim.all_reached:
+                return True
+        return False

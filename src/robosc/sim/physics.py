@@ -1,0 +1,148 @@
+"""The robots' bodies and sensors, simulated by IR-SIM (``ir-sim`` on PyPI): differential
+drive, a 2D LiDAR cast against the walls and boxes, and collision detection.
+
+Each robot runs in an IR-SIM environment of its own built from the same world, so robots
+share the map but neither see nor touch each other (a fleet's controllers are independent;
+see README "Limitations"). This module only turns a world into IR-SIM's configuration and
+reads it back in the conventions of ROS: a LaserScan whose ``ranges[0]`` looks straight
+ahead and which goes round counter-clockwise (a TurtleBot's LDS), distances in metres.
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from robosc.sim.world import Line, Pose, World
+
+
+def irsim_config(world: World, start: Pose) -> dict[str, Any]:
+    """IR-SIM's world configuration for one robot of ``world`` starting at ``start``."""
+    lidar = world.robot.lidar
+    turn = max(world.robot.max_angular, world.robot.turn_speed)
+    obstacles: list[dict[str, Any]] = [
+        {"shape": {"name": "linestring", "vertices": [list(p) for p in wall]}, "state": [0, 0, 0]}
+        for wall in world.walls
+    ]
+    obstacles += [
+        {"shape": {"name": "rectangle", "length": w, "width": h}, "state": [x, y, 0]} for x, y, w, h in world.boxes
+    ]
+    config: dict[str, Any] = {
+        "world": {
+            "width": world.size[0],
+            "height": world.size[1],
+            "step_time": world.step,
+            "sample_time": world.step,
+            "collision_mode": "stop",
+        },
+        "robot": [
+            {
+                "kinematics": {"name": "diff"},
+                "shape": {"name": "circle", "radius": world.robot.radius},
+                "state": [start.x, start.y, start.heading],
+                "vel_max": [world.robot.max_linear, turn],
+                "vel_min": [-world.robot.max_linear, -turn],
+                "sensors": [
+                    {
+                        "type": "lidar2d",
+                        "range_min": lidar.range_min,
+                        "range_max": lidar.range_max,
+                        # -pi .. pi, both ends included: beams + 1 rays one increment apart
+                        "angle_range": 2 * math.pi,
+                        "number": lidar.beams + 1,
+                    }
+                ],
+            }
+        ],
+    }
+    if obstacles:
+        config["obstacle"] = obstacles
+    return config
+
+
+class Body:
+    """One simulated robot: its pose, the velocity it is driven with, its LiDAR."""
+
+    def __init__(self, world: World, start: Pose) -> None:
+        import irsim
+        import yaml
+
+        self.world = world
+        with tempfile.TemporaryDirectory(prefix="robosc-sim-") as folder:
+            path = Path(folder) / "world.yaml"
+            path.write_text(yaml.safe_dump(irsim_config(world, start)), encoding="utf-8")
+            self.env = irsim.make(str(path), display=False, headless=True, log_level="ERROR")
+        self.robot = self.env.robot_list[0]
+        from shapely import MultiLineString, Point, unary_union
+        from shapely.geometry import box
+
+        self._point = Point
+        parts = [MultiLineString([list(w) for w in world.walls])] if world.walls else []
+        parts += [box(x - w / 2, y - h / 2, x + w / 2, y + h / 2) for x, y, w, h in world.boxes]
+        self._obstacles = unary_union(parts) if parts else None
+        self._track = None
+        if world.line is not None:
+            from shapely import LineString
+
+            self._track = LineString(world.line.points)
+
+    @property
+    def pose(self) -> Pose:
+        x, y, heading = (float(v) for v in self.robot.state[:3, 0])
+        return Pose(x, y, heading)
+
+    def step(self, linear: float, angular: float) -> None:
+        self.env.step([linear, angular])
+
+    @property
+    def collided(self) -> bool:
+        return bool(self.robot.collision) or self.clearance() <= 0.0
+
+    def clearance(self) -> float:
+        """Distance from the robot's edge to the nearest wall or box (negative: overlapping)."""
+        if self._obstacles is None:
+            return math.inf
+        pose = self.pose
+        return float(self._obstacles.distance(self._point(pose.x, pose.y))) - self.world.robot.radius
+
+    def scan(self) -> list[float]:
+        """The LiDAR's ranges, ``ranges[0]`` ahead, counter-clockwise; no return reads ``inf``
+        (REP 117)."""
+        data = self.env.get_lidar_scan()
+        ranges = data["ranges"]
+        valid = data.get("valid")
+        beams = self.world.robot.lidar.beams
+        out = []
+        for j in range(beams):
+            k = round((2 * math.pi * j / beams + math.pi) / (2 * math.pi / beams)) % beams
+            value = float(ranges[k])
+            out.append(value if valid is None or bool(valid[k]) else math.inf)
+        return out
+
+    def line_reading(self) -> float | None:
+        """The line detector: the correction (``gain`` per metre the line lies to the right of
+        the point ``look_ahead`` in front of the robot), or None when the line is not seen."""
+        line = self.world.line
+        if line is None or self._track is None:
+            return None
+        pose = self.pose
+        px = pose.x + line.look_ahead * math.cos(pose.heading)
+        py = pose.y + line.look_ahead * math.sin(pose.heading)
+        return _line_offset(self._track, line, px, py, self._point)
+
+
+def _line_offset(track: Any, line: Line, px: float, py: float, point: Any) -> float | None:
+    p = point(px, py)
+    if track.distance(p) > line.width:
+        return None
+    s = track.project(p)
+    here = track.interpolate(s)
+    ahead = track.interpolate(min(s + 0.01, track.length))
+    behind = track.interpolate(max(s - 0.01, 0.0))
+    tx, ty = ahead.x - behind.x, ahead.y - behind.y
+    norm = math.hypot(tx, ty) or 1.0
+    # positive when the point lies left of the track: the line is then on the robot's right
+    offset = (tx * (py - here.y) - ty * (px - here.x)) / norm
+    return line.gain * offset

@@ -1,0 +1,296 @@
+"""World files: what the 2D simulator builds (walls, boxes, a drawn line, the robots and their
+sensors, the goal) and the topic names it uses, read from YAML and checked, with every problem
+reported at its file, line and column.
+
+The format is documented in ``examples/worlds/README.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+from robosc.record import field, record
+
+# what the simulator publishes and subscribes, by role; the values are the default names
+TOPIC_ROLES: dict[str, str] = {
+    "scan": "/scan",  # sensor_msgs/LaserScan, published
+    "cmd_vel": "/cmd_vel",  # geometry_msgs/Twist, subscribed
+    "rotate_left": "/rotate_left",  # std_msgs/Int16 degrees, subscribed
+    "rotate_right": "/rotate_right",  # std_msgs/Int16 degrees, subscribed
+    "rotate_done": "/rotate_done",  # std_msgs/Empty, published when a rotation ends
+    "line_correction": "/line/correction",  # std_msgs/Float32, published while the line is seen
+    "line_lost": "/line/lost",  # std_msgs/Empty, published while it is not
+    "stop": "/emergency_stop/stop",  # std_msgs/Empty, published when the button is pressed
+    "continue": "/emergency_stop/continue",  # std_msgs/Empty, published when it is released
+}
+
+
+class WorldError(Exception):
+    """A world file that cannot be used: the message names file, line and column."""
+
+    def __init__(self, path: str, line: int, column: int, message: str) -> None:
+        super().__init__(f"{path}:{line}:{column}: error: {message}")
+        self.path, self.line, self.column, self.message = path, line, column, message
+
+
+@record
+class Pose:
+    x: float
+    y: float
+    heading: float  # radians, counter-clockwise from the x axis
+
+
+@record
+class Lidar:
+    beams: int = 360  # ranges[0] straight ahead, counter-clockwise (a TurtleBot's LDS)
+    range_min: float = 0.12
+    range_max: float = 3.5
+    rate: float = 10.0  # scans per simulated second
+
+
+@record
+class Robot:
+    radius: float = 0.1
+    max_linear: float = 0.5  # m/s
+    max_angular: float = 2.0  # rad/s
+    turn_speed: float = 1.5  # rad/s while turning for a rotate command
+    command_timeout: float = 0.5  # s a Twist is obeyed without a new one (as a real base)
+    lidar: Lidar = field(default_factory=Lidar)
+
+
+@record
+class Line:
+    """A line drawn on the floor and the detector that follows it."""
+
+    points: tuple[tuple[float, float], ...]
+    look_ahead: float = 0.15  # m in front of the robot's centre, where the detector looks
+    width: float = 0.2  # m: the line is seen while it is this close to the look-ahead point
+    gain: float = 300.0  # correction per metre the line lies to the right (negative: left)
+    rate: float = 10.0  # readings per simulated second
+
+
+@record
+class Goal:
+    """A rectangle every robot must reach; with ``stopped`` it must also stand still there
+    for that many simulated seconds."""
+
+    x: tuple[float, float]
+    y: tuple[float, float]
+    stopped: float = 0.0
+
+    def contains(self, x: float, y: float) -> bool:
+        return self.x[0] <= x <= self.x[1] and self.y[0] <= y <= self.y[1]
+
+
+@record
+class World:
+    name: str
+    path: str
+    size: tuple[float, float]
+    step: float  # simulated seconds per physics step
+    robot: Robot
+    starts: tuple[Pose, ...]
+    goal: Goal
+    walls: tuple[tuple[tuple[float, float], ...], ...]  # polylines
+    boxes: tuple[tuple[float, float, float, float], ...]  # x, y (centre), width, height
+    topics: dict[str, str] = field(compare=False)
+    line: Line | None = None
+    presses: tuple[tuple[float, float], ...] = ()  # emergency stop pressed over [t0, t1)
+
+    def start(self, index: int) -> Pose:
+        """Robot ``index`` starts here (robots share the listed starts when there are more)."""
+        return self.starts[index % len(self.starts)]
+
+
+# ---- reading -------------------------------------------------------------------------------
+
+
+class _Reader:
+    """Typed access to YAML nodes, raising WorldError at the node's position."""
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+
+    def fail(self, node: Any, message: str) -> WorldError:
+        mark = node.start_mark
+        return WorldError(self.path, mark.line + 1, mark.column + 1, message)
+
+    def mapping(self, node: Any, what: str, allowed: set[str]) -> dict[str, Any]:
+        import yaml
+
+        if not isinstance(node, yaml.MappingNode):
+            raise self.fail(node, f"{what} must be a mapping")
+        out: dict[str, Any] = {}
+        for key, value in node.value:
+            name = key.value if isinstance(key, yaml.ScalarNode) else None
+            if name not in allowed:
+                import difflib
+
+                close = difflib.get_close_matches(str(name), sorted(allowed), n=1)
+                hint = f"; did you mean '{close[0]}'?" if close else f"; expected one of: {', '.join(sorted(allowed))}"
+                raise self.fail(key, f"unknown key '{name}' in {what}{hint}")
+            if name in out:
+                raise self.fail(key, f"'{name}' given twice in {what}")
+            out[name] = value
+        return out
+
+    def sequence(self, node: Any, what: str, length: int | None = None) -> list[Any]:
+        import yaml
+
+        if not isinstance(node, yaml.SequenceNode):
+            raise self.fail(node, f"{what} must be a list")
+        if length is not None and len(node.value) != length:
+            raise self.fail(node, f"{what} must have {length} items, not {len(node.value)}")
+        return list(node.value)
+
+    def number(self, node: Any, what: str, low: float | None = None, positive: bool = False) -> float:
+        import yaml
+
+        if not isinstance(node, yaml.ScalarNode) or node.tag not in (
+            "tag:yaml.org,2002:int",
+            "tag:yaml.org,2002:float",
+        ):
+            raise self.fail(node, f"{what} must be a number")
+        try:
+            value = float(node.value.replace("_", ""))
+        except ValueError:
+            raise self.fail(node, f"{what} must be a number") from None
+        if not math.isfinite(value):
+            raise self.fail(node, f"{what} must be finite")
+        if positive and value <= 0:
+            raise self.fail(node, f"{what} must be greater than 0")
+        if low is not None and value < low:
+            raise self.fail(node, f"{what} must be at least {low:g}")
+        return value
+
+    def text(self, node: Any, what: str) -> str:
+        import yaml
+
+        if not isinstance(node, yaml.ScalarNode) or node.tag != "tag:yaml.org,2002:str" or not node.value:
+            raise self.fail(node, f"{what} must be a non-empty text")
+        return str(node.value)
+
+    def point(self, node: Any, what: str) -> tuple[float, float]:
+        x, y = self.sequence(node, what, 2)
+        return self.number(x, what), self.number(y, what)
+
+    def interval(self, node: Any, what: str) -> tuple[float, float]:
+        low, high = self.sequence(node, what, 2)
+        a, b = self.number(low, what), self.number(high, what)
+        if a >= b:
+            raise self.fail(node, f"{what} must be [low, high] with low < high")
+        return a, b
+
+
+def load_world(path: str | Path) -> World:
+    """Read and check a world file; raises WorldError (file, line, column) on any problem."""
+    import yaml
+
+    name = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise WorldError(name, 1, 1, f"cannot read the world file: {exc}") from None
+    try:
+        root = yaml.compose(text)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line, column = (mark.line + 1, mark.column + 1) if mark else (1, 1)
+        raise WorldError(name, line, column, f"not valid YAML: {exc.problem or exc.context}") from None
+    if root is None:
+        raise WorldError(name, 1, 1, "the world file is empty")
+    return _world(_Reader(name), root)
+
+
+def _world(r: _Reader, root: Any) -> World:
+    keys = {"world", "size", "step", "robot", "starts", "goal", "walls", "boxes", "topics", "line", "emergency_stop"}
+    top = r.mapping(root, "the world", keys)
+    for required in ("world", "size", "starts", "goal"):
+        if required not in top:
+            raise r.fail(root, f"the world needs '{required}'")
+    width, height = (r.number(n, "size", positive=True) for n in r.sequence(top["size"], "size", 2))
+    step = r.number(top["step"], "step", positive=True) if "step" in top else 0.05
+    if step > 0.2:
+        raise r.fail(top["step"], "step must be at most 0.2 s (the LiDAR and the turns need finer steps)")
+    robot = _robot(r, top["robot"]) if "robot" in top else Robot()
+    starts = []
+    for node in r.sequence(top["starts"], "starts"):
+        x, y, heading = (r.number(n, "a start") for n in r.sequence(node, "a start [x, y, heading]", 3))
+        if not (0 <= x <= width and 0 <= y <= height):
+            raise r.fail(node, "a start must lie inside the world")
+        starts.append(Pose(x, y, math.radians(heading)))
+    if not starts:
+        raise r.fail(top["starts"], "the world needs at least one start")
+    goal_keys = r.mapping(top["goal"], "goal", {"x", "y", "stopped"})
+    for required in ("x", "y"):
+        if required not in goal_keys:
+            raise r.fail(top["goal"], f"the goal needs '{required}'")
+    goal = Goal(
+        r.interval(goal_keys["x"], "goal x"),
+        r.interval(goal_keys["y"], "goal y"),
+        r.number(goal_keys["stopped"], "goal stopped", low=0) if "stopped" in goal_keys else 0.0,
+    )
+    walls = []
+    for node in r.sequence(top["walls"], "walls") if "walls" in top else []:
+        points = tuple(r.point(p, "a wall point") for p in r.sequence(node, "a wall (a list of points)"))
+        if len(points) < 2:
+            raise r.fail(node, "a wall needs at least two points")
+        walls.append(points)
+    boxes = []
+    for node in r.sequence(top["boxes"], "boxes") if "boxes" in top else []:
+        x, y, w, h = (r.number(n, "a box") for n in r.sequence(node, "a box [x, y, width, height]", 4))
+        if w <= 0 or h <= 0:
+            raise r.fail(node, "a box needs a positive width and height")
+        boxes.append((x, y, w, h))
+    topics = dict(TOPIC_ROLES)
+    if "topics" in top:
+        for role, node in r.mapping(top["topics"], "topics", set(TOPIC_ROLES)).items():
+            topics[role] = r.text(node, f"the topic of '{role}'")
+    line = _line(r, top["line"]) if "line" in top else None
+    presses = []
+    if "emergency_stop" in top:
+        for node in r.sequence(top["emergency_stop"], "emergency_stop (a list of [pressed, released] times)"):
+            presses.append(r.interval(node, "an emergency stop press [pressed, released]"))
+    return World(
+        name=r.text(top["world"], "world"),
+        path=r.path,
+        size=(width, height),
+        step=step,
+        robot=robot,
+        starts=tuple(starts),
+        goal=goal,
+        walls=tuple(walls),
+        boxes=tuple(boxes),
+        topics=topics,
+        line=line,
+        presses=tuple(presses),
+    )
+
+
+def _robot(r: _Reader, node: Any) -> Robot:
+    keys = r.mapping(node, "robot", {"radius", "max_linear", "max_angular", "turn_speed", "command_timeout", "lidar"})
+    values = {k: r.number(v, k, positive=True) for k, v in keys.items() if k != "lidar"}
+    lidar = Lidar()
+    if "lidar" in keys:
+        lidar_keys = r.mapping(keys["lidar"], "lidar", {"beams", "range_min", "range_max", "rate"})
+        numbers = {k: r.number(v, k, low=0) for k, v in lidar_keys.items()}
+        beams = numbers.pop("beams", 360)
+        if beams != int(beams) or not 4 <= beams <= 4096:
+            raise r.fail(lidar_keys["beams"], "beams must be a whole number from 4 to 4096")
+        lidar = Lidar(beams=int(beams), **numbers)
+        if lidar.range_max <= lidar.range_min or lidar.rate <= 0:
+            raise r.fail(keys["lidar"], "the lidar needs range_min < range_max and a rate above 0")
+    return Robot(lidar=lidar, **values)
+
+
+def _line(r: _Reader, node: Any) -> Line:
+    keys = r.mapping(node, "line", {"points", "look_ahead", "width", "gain", "rate"})
+    if "points" not in keys:
+        raise r.fail(node, "the line needs 'points'")
+    points = tuple(r.point(p, "a line point") for p in r.sequence(keys["points"], "line points"))
+    if len(points) < 2:
+        raise r.fail(keys["points"], "the line needs at least two points")
+    values = {k: r.number(v, k, positive=k != "gain") for k, v in keys.items() if k != "points"}
+    return Line(points=points, **values)
