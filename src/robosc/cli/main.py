@@ -34,6 +34,7 @@ COMMANDS = {
     "synthesize": ("robosc.cli.synthesize", "synthesize"),
     "cif": ("robosc.cli.cif", "cif"),
     "simulate": ("robosc.cli.simulate", "simulate"),
+    "sim": ("robosc.cli.sim", "sim"),
     "generate": ("robosc.cli.generate", "generate"),
     "build": ("robosc.cli.generate", "build"),
     "plot": ("robosc.cli.debug", "plot"),

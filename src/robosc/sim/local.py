@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import types
+from pathlib import Path
 from typing import Any
 
 from robosc.sim.simulation import Message, Simulation
@@ -98,6 +99,21 @@ class LocalRun:
             robot.index = i
             self.robots.append(robot)
         self._next_tick = 0.0
+        self._logs: list[Any] = []
+
+    def record(self, paths: list[Path]) -> None:
+        """Each robot's events to its event log (JSON Lines), stamped with simulated time."""
+        from robosc.runtime.onboard.recording import EventLog, Recorder
+
+        for robot, path in zip(self.robots, paths, strict=True):
+            log = EventLog(str(path))
+            self._logs.append(log)
+            robot.observer = Recorder(robot, [log], clock=lambda: self.sim.time)
+
+    def close(self) -> None:
+        for log in self._logs:
+            log.close()
+        self._logs.clear()
 
     def deliver(self, message: Message) -> None:
         robot = self.robots[message.robot]

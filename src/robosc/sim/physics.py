@@ -62,12 +62,24 @@ def irsim_config(world: World, start: Pose) -> dict[str, Any]:
     return config
 
 
+def _import_irsim() -> Any:
+    """IR-SIM, imported quietly: on import it tries matplotlib's window backends one by one
+    and prints each failure (there is no window here: the simulation runs headless)."""
+    import contextlib
+    import io
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        import irsim
+    return irsim
+
+
 class Body:
     """One simulated robot: its pose, the velocity it is driven with, its LiDAR."""
 
     def __init__(self, world: World, start: Pose) -> None:
-        import irsim
         import yaml
+
+        irsim = _import_irsim()
 
         self.world = world
         with tempfile.TemporaryDirectory(prefix="robosc-sim-") as folder:
@@ -145,4 +157,4 @@ def _line_offset(track: Any, line: Line, px: float, py: float, point: Any) -> fl
     norm = math.hypot(tx, ty) or 1.0
     # positive when the point lies left of the track: the line is then on the robot's right
     offset = (tx * (py - here.y) - ty * (px - here.x)) / norm
-    return line.gain * offset
+    return float(line.gain * offset)

@@ -18,6 +18,8 @@ from robosc.record import field, record
 from robosc.sim.physics import Body
 from robosc.sim.world import World
 
+SCAN_KEPT_EVERY = 1.0  # seconds of simulated time between the scans a run keeps for its recording
+
 
 @record
 class Message:
@@ -40,6 +42,7 @@ class Status:
     refused: int = 0  # commands the supervisor refused (the node's ``blocked`` reports)
     bad_commands: int = 0  # commands with a number that is not finite (the robot stopped)
     trajectory: list[tuple[float, float, float, float]] = field(default_factory=list)  # t, x, y, heading
+    scans: list[tuple[float, tuple[float, ...]]] = field(default_factory=list)  # t, ranges: one scan a second
 
 
 class _Drive:
@@ -70,6 +73,7 @@ class Simulation:
         self._trajectory_every = max(1, trajectory_every)
         self._next_scan = 0.0
         self._next_line = 0.0
+        self._next_kept_scan = 0.0
         for i, body in enumerate(self.bodies):
             self._record(i, body)
 
@@ -134,7 +138,12 @@ class Simulation:
                     out += self.press(i, self.time < t1)
         if self.time + 1e-9 >= self._next_scan:
             self._next_scan += 1.0 / self.world.robot.lidar.rate
-            out += [Message(i, "scan", body.scan()) for i, body in enumerate(self.bodies)]
+            scans = [body.scan() for body in self.bodies]
+            out += [Message(i, "scan", ranges) for i, ranges in enumerate(scans)]
+            if self.time + 1e-9 >= self._next_kept_scan:  # for the recording
+                self._next_kept_scan += SCAN_KEPT_EVERY
+                for status, ranges in zip(self.status, scans, strict=True):
+                    status.scans.append((self.time, tuple(ranges)))
         line = self.world.line
         if line is not None and self.time + 1e-9 >= self._next_line:
             self._next_line += 1.0 / line.rate

@@ -194,12 +194,15 @@ class NodeCore(object):
                 if kind in events:
                     self.route[events[kind].name] = call
 
-    def start_recording(self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
-        """Events go to the event log and the live view (a sink), if any."""
+    def start_recording(
+        self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
+    ) -> None:
+        """Events go to the event log and the live view (a sink), if any, stamped by
+        ``clock``: the node's clock, which is the simulation's under ``use_sim_time``."""
         if live_view is not None:
             self.sinks.append(live_view)
         if self.sinks:
-            self.supervisor.observer = Recorder(self.supervisor, self.sinks)
+            self.supervisor.observer = Recorder(self.supervisor, self.sinks, clock)
 
     def open_live_view(self, robot_class: Any) -> Any:
         """The live view on 127.0.0.1:``view_port`` (the page generated next to the robot's

@@ -45,7 +45,7 @@ class SupervisorNode(NodeCore):
         self.lock = self.supervisor.lock
         self._load_types()
         self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
-        self.start_recording(self.live_view.publish if self.live_view is not None else None)
+        self.start_recording(self.live_view.publish if self.live_view is not None else None, rospy.get_time)
         self._create()
         self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
 

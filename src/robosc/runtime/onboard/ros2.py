@@ -59,11 +59,15 @@ class SupervisorNode(Node, NodeCore):
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
         self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
-        self.start_recording(self.live_view.publish if self.live_view is not None else None)
+        self.start_recording(self.live_view.publish if self.live_view is not None else None, self._now)
         self._create()
         self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
 
     # ---- set-up ----------------------------------------------------------------------------
+    def _now(self) -> float:
+        """Seconds on the node's clock (the simulation's under ``use_sim_time``)."""
+        return float(self.get_clock().now().nanoseconds) / 1e9
+
     def _log(self, level: str, message: str) -> None:
         logger = self.get_logger()  # rclpy wants one severity per line of code that logs
         if level == "error":

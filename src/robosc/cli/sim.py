@@ -1,0 +1,164 @@
+"""``robosc sim WORLD MODEL [--ros none|1|2] [--robots N] [--timeout S] [--record DIR]``."""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import shutil
+import tempfile
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import click
+
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, supervised
+
+if TYPE_CHECKING:
+    from robosc.sim.run import Report
+
+
+@click.command()
+@click.argument("world_file", metavar="WORLD", type=click.Path())
+@click.argument("model", type=click.Path())
+@click.option(
+    "--ros",
+    type=click.Choice(["none", "1", "2"]),
+    default="2",
+    show_default=True,
+    help="Middleware: 2 (rclpy, Fast DDS), 1 (rospy, a rosmaster of its own) or none "
+    "(the supervisors in this process, no ROS).",
+)
+@click.option("--robots", type=click.IntRange(1, 64), default=1, show_default=True, help="Robots in the world.")
+@click.option(
+    "--timeout",
+    type=click.FloatRange(min=0.0, min_open=True, max=86400.0),
+    default=300.0,
+    show_default=True,
+    help="Seconds of simulated time before the run counts as failed.",
+)
+@click.option(
+    "--speed",
+    type=click.FloatRange(min=0.0, min_open=True, max=1000.0),
+    default=4.0,
+    show_default=True,
+    help="Simulated seconds per real second (ROS runs; the nodes follow /clock).",
+)
+@click.option(
+    "--rate",
+    type=click.FloatRange(min=0.0, min_open=True, max=1000.0),
+    default=10.0,
+    show_default=True,
+    help="Controller cycles per simulated second.",
+)
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the controllers' choices (robot k: seed + k - 1).")
+@click.option(
+    "--record",
+    type=click.Path(file_okay=False),
+    help="Keep everything in DIR: the package, node logs, event logs (JSON Lines), the trajectory (MCAP), "
+    "the sequence-of-events plot and an animation of the run.",
+)
+@include_option
+def sim(
+    world_file: str,
+    model: str,
+    ros: str,
+    robots: int,
+    timeout: float,
+    speed: float,
+    rate: float,
+    seed: int,
+    record: str | None,
+    include: tuple[str, ...],
+) -> None:
+    """Drive robots in a 2D WORLD with the controller synthesized from MODEL, end to end:
+    the controller package is generated, the simulator's node and one controller node per
+    robot run on a private ROS graph (loopback only), and the run ends when every robot
+    has reached the goal (exit 0), one touched a wall, or the timeout passed (exit 1)."""
+    from robosc.sim.world import WorldError, load_world
+
+    try:
+        world = load_world(world_file)
+    except WorldError as exc:
+        raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
+    if importlib.util.find_spec("irsim") is None:
+        raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
+    _, plan = supervised(model, include, "a simulation")
+    from robosc.runtime.simulator import load_module
+    from robosc.sim.run import roles
+
+    module = load_module(plan)
+    used = roles(world, module.Robot.COMMUNICATIONS)
+    if not used:
+        names = ", ".join(sorted(world.topics.values()))
+        raise input_problem(f"{model} uses none of the topics of {world_file} ({names})")
+    if ros != "none":
+        _check_middleware(int(ros))
+    folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-sim-"))
+    try:
+        report = _run(world, plan, module, ros, robots, timeout, speed, rate, seed, folder)
+        _print(report, ros)
+        if record:
+            from robosc.sim.recording import write_recording
+
+            for written in write_recording(report, world, folder):
+                click.echo(f"recorded {written}")
+    finally:
+        if not record:
+            shutil.rmtree(folder, ignore_errors=True)
+    raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
+
+
+def _run(
+    world: object,
+    plan: object,
+    module: object,
+    ros: str,
+    robots: int,
+    timeout: float,
+    speed: float,
+    rate: float,
+    seed: int,
+    folder: Path,
+) -> Report:
+    from robosc.sim.run import run_local, run_ros
+    from robosc.sim.session import SessionError
+
+    if ros == "none":
+        return run_local(world, module, robots, timeout, rate, seed, folder)  # type: ignore[arg-type]
+    try:
+        return run_ros(world, plan, module, int(ros), robots, timeout, speed, rate, seed, folder)  # type: ignore[arg-type]
+    except SessionError as exc:
+        raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+
+
+def _check_middleware(ros: int) -> None:
+    if ros == 2:
+        if importlib.util.find_spec("rclpy") is None:
+            raise input_problem("--ros 2 needs rclpy in this Python: pip install 'robosc[ros2]'")
+        return
+    python = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
+    if not Path(python).exists() or not Path("/usr/bin/rosmaster").exists():
+        raise input_problem(
+            f"--ros 1 needs rospy and rosmaster for {python} (Debian: apt-get install python3-rospy python3-rosmaster)"
+        )
+
+
+def _print(report: Report, ros: str) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console(highlight=False)
+    table = Table(title_justify="left", title=f"{len(report.robots)} robot(s), ROS: {ros}")
+    for column in ("robot", "time to goal", "distance", "closest approach", "commands", "refused"):
+        table.add_column(column, justify="left" if column == "robot" else "right")
+    for r in report.robots:
+        if r.reached is not None:
+            goal = f"{r.reached:.1f} s"
+        elif r.collided_at is not None:
+            goal = f"hit a wall at {r.collided_at:.1f} s"
+        else:
+            goal = "not reached"
+        table.add_row(r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused))
+    console.print(table)
+    verdict = "ok" if report.ok else "FAILED"
+    console.print(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")

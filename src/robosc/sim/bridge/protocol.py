@@ -1,0 +1,104 @@
+"""The lines between the simulation (robosc) and the simulator's ROS node, one JSON object
+each, ``op`` saying what it is.
+
+simulation -> node:
+  {"op": "setup", "robots": ["robot1", ...], "topics": {role: name}, "roles": [role, ...],
+   "scan": {LaserScan fields but ranges}}
+  {"op": "clock", "t": seconds}
+  {"op": "publish", "robot": i, "role": role, "value": ...}   (scan: ranges; line_correction: a number)
+  {"op": "quit"}
+node -> simulation:
+  {"op": "ready"}
+  {"op": "peers", "robots": [connected roles of robot 0, ...]}
+  {"op": "command", "robot": i, "role": "cmd_vel", "value": {"linear": {"x": x}, "angular": {"z": z}}}
+  {"op": "command", "robot": i, "role": "rotate_left" | "rotate_right", "value": degrees}
+  {"op": "refused", "robot": i}        (the controller reported a refused command on 'blocked')
+  {"op": "press", "robot": i, "pressed": true | false}   (the emergency stop button service)
+"""
+
+import json
+import math
+import sys
+import threading
+from typing import Any, Callable, Dict, List, Optional
+
+# the roles whose topics the node publishes; the others it subscribes to
+PUBLISHED = ("scan", "rotate_done", "line_correction", "line_lost", "stop", "continue")
+SUBSCRIBED = ("cmd_vel", "rotate_left", "rotate_right")
+BUTTON = "emergency_stop_button"  # the service (std_srvs/SetBool) that presses the button
+
+
+def topic(robot: str, name: str) -> str:
+    """A world topic name inside a robot's namespace: ("robot1", "/scan") -> "/robot1/scan"."""
+    return "/%s/%s" % (robot, name.lstrip("/"))
+
+
+def finite(value: Any) -> float:
+    """A number from a message; NaN for anything else (the simulation then stops the robot)."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return number
+
+
+class Channel(object):
+    """Lines in from standard input (on a thread of their own), lines out on standard output."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        # the lines go to the real standard output; whatever else prints goes to the log
+        self._out = sys.stdout
+        sys.stdout = sys.stderr
+
+    def send(self, op: str, **fields: Any) -> None:
+        fields["op"] = op
+        line = json.dumps(fields, allow_nan=True)
+        with self._lock:
+            self._out.write(line + "\n")
+            self._out.flush()
+
+    def on_twist(self, i: int) -> Callable[[Any], None]:
+        """The callback of robot ``i``'s velocity command topic (geometry_msgs/Twist)."""
+        return lambda m: self.send("command", robot=i, role="cmd_vel", value=twist_value(m.linear.x, m.angular.z))
+
+    def on_number(self, i: int, role: str) -> Callable[[Any], None]:
+        """The callback of robot ``i``'s ``role`` topic (a number: degrees to rotate)."""
+        return lambda m: self.send("command", robot=i, role=role, value=finite(m.data))
+
+    def on_refused(self, i: int) -> Callable[[Any], None]:
+        """The callback of robot ``i``'s controller's ``blocked`` topic."""
+        return lambda m: self.send("refused", robot=i)
+
+    def serve(self, handle: Callable[[Dict[str, Any]], None], stop: Callable[[], None]) -> threading.Thread:
+        def read() -> None:
+            for line in sys.stdin:
+                try:
+                    message = json.loads(line)
+                except ValueError:
+                    continue
+                if message.get("op") == "quit":
+                    break
+                handle(message)
+            stop()
+
+        thread = threading.Thread(target=read, name="simulation", daemon=True)
+        thread.start()
+        return thread
+
+
+def twist_value(linear_x: Any, angular_z: Any) -> Dict[str, Dict[str, float]]:
+    return {"linear": {"x": finite(linear_x)}, "angular": {"z": finite(angular_z)}}
+
+
+def peer_counts(robots: List[str], connected: Callable[[int, str], bool], roles: List[str]) -> List[List[str]]:
+    return [[role for role in roles if connected(i, role)] for i in range(len(robots))]
+
+
+def setup_line() -> Optional[Dict[str, Any]]:
+    """The first line: the setup."""
+    line = sys.stdin.readline()
+    if not line:
+        return None
+    message = json.loads(line)
+    return message if message.get("op") == "setup" else None

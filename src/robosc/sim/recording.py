@@ -1,0 +1,217 @@
+"""What ``robosc sim --record DIR`` leaves besides the nodes' event logs
+(``events/robotK.jsonl``): one MCAP file with every robot's pose, LiDAR and events (Foxglove
+replays it: ``foxglove.PoseInFrame`` and ``foxglove.LaserScan`` messages in the frame
+``world``), a sequence-of-events plot per robot, and an animated picture of the run.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any, BinaryIO
+
+from robosc.sim.run import Report, robot_names
+from robosc.sim.world import World
+
+FRAME = "world"
+POSE_SCHEMA = {
+    "title": "foxglove.PoseInFrame",
+    "type": "object",
+    "properties": {"timestamp": {"type": "object"}, "frame_id": {"type": "string"}, "pose": {"type": "object"}},
+}
+SCAN_SCHEMA = {
+    "title": "foxglove.LaserScan",
+    "type": "object",
+    "properties": {
+        "timestamp": {"type": "object"},
+        "frame_id": {"type": "string"},
+        "pose": {"type": "object"},
+        "start_angle": {"type": "number"},
+        "end_angle": {"type": "number"},
+        "ranges": {"type": "array", "items": {"type": "number"}},
+        "intensities": {"type": "array", "items": {"type": "number"}},
+    },
+}
+ANIMATION_FPS = 8
+ANIMATION_STEP = 1.0  # seconds of simulated time per frame
+RAYS = 36  # LiDAR rays drawn per robot
+
+
+def write_recording(report: Report, world: World, folder: Path) -> list[Path]:
+    """The MCAP file, the plots and the animation of a finished run; returns what it wrote."""
+    from robosc.debug.eventlog import LogError, read_log
+
+    folder.mkdir(parents=True, exist_ok=True)
+    names = robot_names(len(report.robots))
+    events: dict[str, list[Any]] = {}
+    for name in names:
+        path = folder / "events" / f"{name}.jsonl"
+        try:
+            events[name] = read_log(path) if path.exists() else []
+        except LogError:
+            events[name] = []
+    written = []
+    with open(folder / "run.mcap", "wb") as handle:
+        write_mcap(report, world, events, handle)
+    written.append(folder / "run.mcap")
+    written += write_plots(events, folder)
+    written.append(animate(report, world, folder / "run.gif"))
+    return written
+
+
+def _stamp(t: float) -> dict[str, int]:
+    nanoseconds = round(t * 1e9)
+    return {"sec": nanoseconds // 1_000_000_000, "nsec": nanoseconds % 1_000_000_000}
+
+
+def _pose(x: float, y: float, heading: float) -> dict[str, Any]:
+    return {
+        "position": {"x": x, "y": y, "z": 0.0},
+        "orientation": {"x": 0.0, "y": 0.0, "z": math.sin(heading / 2), "w": math.cos(heading / 2)},
+    }
+
+
+def pose_at(trajectory: list[tuple[float, float, float, float]], t: float) -> tuple[float, float, float]:
+    """The last recorded pose at or before ``t``."""
+    best = trajectory[0]
+    for point in trajectory:
+        if point[0] > t + 1e-9:
+            break
+        best = point
+    return best[1], best[2], best[3]
+
+
+def write_mcap(report: Report, world: World, events: dict[str, list[Any]], handle: BinaryIO) -> None:
+    """Channels ``/robotK/pose``, ``/robotK/scan`` and ``/robotK/events``, by simulated time."""
+    from mcap.writer import Writer
+
+    from robosc.debug.eventlog import SCHEMA as EVENT_SCHEMA
+
+    writer = Writer(handle)
+    writer.start(profile="", library="robosc sim")
+    schemas = {
+        kind: writer.register_schema(schema["title"], "jsonschema", json.dumps(schema).encode())  # type: ignore[arg-type]
+        for kind, schema in (("pose", POSE_SCHEMA), ("scan", SCAN_SCHEMA), ("events", EVENT_SCHEMA))
+    }
+    lidar = world.robot.lidar
+    messages: list[tuple[float, int, dict[str, Any]]] = []
+    for name, status in zip(robot_names(len(report.robots)), report.status, strict=True):
+        channel = {kind: writer.register_channel(f"/{name}/{kind}", "json", schemas[kind]) for kind in schemas}
+        for t, x, y, heading in status.trajectory:
+            messages.append((t, channel["pose"], {"timestamp": _stamp(t), "frame_id": FRAME, "pose": _pose(x, y, heading)}))
+        for t, ranges in status.scans:
+            x, y, heading = pose_at(status.trajectory, t)
+            scan = {
+                "timestamp": _stamp(t),
+                "frame_id": FRAME,
+                "pose": _pose(x, y, heading),
+                "start_angle": 0.0,
+                "end_angle": 2 * math.pi * (lidar.beams - 1) / lidar.beams,
+                "ranges": [r if math.isfinite(r) else 0.0 for r in ranges],  # 0: no return (JSON has no inf)
+                "intensities": [],
+            }
+            messages.append((t, channel["scan"], scan))
+        for record in events.get(name, []):
+            messages.append((record.time, channel["events"], record.as_json()))
+    messages.sort(key=lambda m: m[0])
+    for sequence, (t, channel_id, data) in enumerate(messages):
+        nanoseconds = max(0, round(t * 1e9))
+        writer.add_message(
+            channel_id,
+            log_time=nanoseconds,
+            publish_time=nanoseconds,
+            sequence=sequence,
+            data=json.dumps(data, sort_keys=True).encode(),
+        )
+    writer.finish()  # type: ignore[no-untyped-call]
+
+
+def write_plots(events: dict[str, list[Any]], folder: Path) -> list[Path]:
+    """The sequence-of-events plot of each robot that has events: ``robotK_events.png``."""
+    from robosc.debug.plot import plot
+
+    written = []
+    for name, records in events.items():
+        if records:
+            written.append(plot(records, folder / f"{name}_events.png", title=f"{name}: {len(records):,} events"))
+    return written
+
+
+def animate(report: Report, world: World, output: Path) -> Path:
+    """An animated GIF: walls, boxes, the track, the goal, each robot with its trajectory so
+    far and its LiDAR rays, one frame per ``ANIMATION_STEP`` seconds of simulated time."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation, PillowWriter
+    from matplotlib.patches import Circle, Rectangle
+
+    width, height = world.size
+    fig, ax = plt.subplots(figsize=(6.0, 6.0 * height / width + 0.4), dpi=80)
+    ax.set_xlim(0, width)
+    ax.set_ylim(0, height)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    goal = world.goal
+    (gx0, gx1), (gy0, gy1) = goal.x, goal.y
+    ax.add_patch(Rectangle((gx0, gy0), gx1 - gx0, gy1 - gy0, color="#59a14f", alpha=0.25))
+    if world.line is not None:
+        xs, ys = zip(*world.line.points, strict=True)
+        ax.plot(xs, ys, color="#444444", linewidth=3, alpha=0.5)
+    for wall in world.walls:
+        ax.plot([p[0] for p in wall], [p[1] for p in wall], color="black", linewidth=2)
+    for x, y, w, h in world.boxes:
+        ax.add_patch(Rectangle((x - w / 2, y - h / 2), w, h, color="#e15759"))
+    colors = ["#4e79a7", "#f28e2b", "#76b7b2", "#b07aa1", "#edc948", "#9c755f", "#ff9da7", "#bab0ac"]
+    radius = world.robot.radius
+    paths, bodies, rays = [], [], []
+    for k in range(len(report.robots)):
+        color = colors[k % len(colors)]
+        (path,) = ax.plot([], [], color=color, linewidth=1)
+        body = Circle((0, 0), radius, color=color, zorder=3)
+        ax.add_patch(body)
+        (ray,) = ax.plot([], [], color=color, linewidth=0.5, alpha=0.5)
+        paths.append(path)
+        bodies.append(body)
+        rays.append(ray)
+    title = ax.set_title("", fontsize=9, loc="left")
+    end = report.simulated
+    frames = max(1, int(end / ANIMATION_STEP) + 1)
+    lidar = world.robot.lidar
+
+    def draw(frame: int) -> list[Any]:
+        t = min(end, frame * ANIMATION_STEP)
+        for k, status in enumerate(report.status):
+            shown = [p for p in status.trajectory if p[0] <= t + 1e-9] or status.trajectory[:1]
+            paths[k].set_data([p[1] for p in shown], [p[2] for p in shown])
+            x, y, heading = shown[-1][1], shown[-1][2], shown[-1][3]
+            bodies[k].center = (x, y)
+            rays[k].set_data(*_rays(status.scans, t, x, y, heading, lidar.beams, lidar.range_max))
+        title.set_text(f"t = {t:5.1f} s")
+        return [*paths, *bodies, *rays, title]
+
+    animation = FuncAnimation(fig, draw, frames=frames, blit=False)
+    animation.save(str(output), writer=PillowWriter(fps=ANIMATION_FPS))
+    plt.close(fig)
+    return output
+
+
+def _rays(
+    scans: list[tuple[float, tuple[float, ...]]], t: float, x: float, y: float, heading: float, beams: int, range_max: float
+) -> tuple[list[float], list[float]]:
+    """Line segments (separated by NaN) from the robot along ``RAYS`` of its last scan."""
+    kept = [s for s in scans if s[0] <= t + 1e-9]
+    if not kept:
+        return [], []
+    ranges = kept[-1][1]
+    xs: list[float] = []
+    ys: list[float] = []
+    for j in range(0, beams, max(1, beams // RAYS)):
+        r = ranges[j] if math.isfinite(ranges[j]) else range_max
+        angle = heading + 2 * math.pi * j / beams
+        xs += [x, x + r * math.cos(angle), math.nan]
+        ys += [y, y + r * math.sin(angle), math.nan]
+    return xs, ys

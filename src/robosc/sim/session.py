@@ -1,0 +1,144 @@
+"""The simulation driving the simulator's ROS node (``bridge``) over its standard input and
+output: it owns simulated time, publishes ``/clock`` through the node at every step and
+paces the steps at ``speed`` times real time.
+"""
+
+from __future__ import annotations
+
+import json
+import queue
+import subprocess
+import threading
+import time
+from collections.abc import Callable
+from typing import IO, Any
+
+from robosc.sim.local import apply_command, scan_message
+from robosc.sim.simulation import Message, Simulation
+
+
+class SessionError(Exception):
+    """The simulator's node or the controllers did not come up."""
+
+
+class Bridge:
+    """The simulator's node as a subprocess: lines to it, lines from it on a queue."""
+
+    def __init__(self, process: subprocess.Popen[bytes]) -> None:
+        assert process.stdin is not None and process.stdout is not None
+        self.process = process
+        self._in: IO[bytes] = process.stdin
+        self.lines: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        threading.Thread(target=self._read, args=(process.stdout,), daemon=True).start()
+
+    def _read(self, stream: IO[bytes]) -> None:
+        for raw in stream:
+            try:
+                message = json.loads(raw)
+            except ValueError:
+                continue
+            if isinstance(message, dict):
+                self.lines.put(message)
+        self.lines.put(None)  # the node ended
+
+    def send(self, op: str, **fields: Any) -> None:
+        fields["op"] = op
+        try:
+            self._in.write((json.dumps(fields) + "\n").encode())
+            self._in.flush()
+        except (BrokenPipeError, ValueError, OSError):
+            raise SessionError("the simulator's node ended") from None
+
+    def close(self) -> None:
+        try:
+            self.send("quit")
+            self._in.close()
+        except SessionError:
+            pass
+
+
+def setup(sim: Simulation, bridge: Bridge, robots: list[str], roles: list[str]) -> None:
+    scan = scan_message(sim, [])
+    del scan["ranges"]
+    bridge.send("setup", robots=robots, topics=sim.world.topics, roles=roles, scan=scan)
+
+
+def wait_for(bridge: Bridge, condition: Callable[[dict[str, Any]], bool], timeout: float, what: str) -> None:
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        try:
+            message = bridge.lines.get(timeout=0.1)
+        except queue.Empty:
+            continue
+        if message is None:
+            raise SessionError(f"the simulator's node ended while waiting for {what}")
+        if condition(message):
+            return
+    raise SessionError(f"timed out after {timeout:g} s waiting for {what}")
+
+
+def connected(roles: list[str], robots: int) -> Callable[[dict[str, Any]], bool]:
+    """The condition: every robot's controller is connected on every topic it uses."""
+
+    def condition(message: dict[str, Any]) -> bool:
+        peers = message.get("robots")
+        if message.get("op") != "peers" or not isinstance(peers, list) or len(peers) != robots:
+            return False
+        return all(set(roles) <= set(p) for p in peers)
+
+    return condition
+
+
+def publish(bridge: Bridge, messages: list[Message]) -> None:
+    for m in messages:
+        # Python's json writes and reads Infinity (a beam without a return)
+        bridge.send("publish", robot=m.robot, role=m.role, value=m.value)
+
+
+def run(
+    sim: Simulation,
+    bridge: Bridge,
+    timeout: float,
+    speed: float = 1.0,
+    on_step: Callable[[Simulation], None] | None = None,
+) -> tuple[bool, str]:
+    """Step until every robot reached its goal, one collided, or ``timeout`` simulated seconds;
+    returns (success, why it ended)."""
+    started = time.monotonic()
+    bridge.send("clock", t=sim.time)
+    while True:
+        while True:  # what came from ROS since the last step
+            try:
+                message = bridge.lines.get_nowait()
+            except queue.Empty:
+                break
+            if message is None:
+                return False, "the simulator's node ended"
+            _apply(sim, bridge, message)
+        out = sim.step()
+        bridge.send("clock", t=sim.time)
+        publish(bridge, out)
+        if on_step is not None:
+            on_step(sim)
+        if sim.any_collided:
+            hit = [i + 1 for i, s in enumerate(sim.status) if s.collided_at is not None]
+            return False, f"robot {', '.join(map(str, hit))} touched a wall at t = {sim.time:.2f} s"
+        if sim.all_reached:
+            return True, "every robot reached the goal"
+        if sim.time >= timeout:
+            return False, f"timeout: {timeout:g} s of simulated time"
+        delay = started + sim.time / speed - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
+
+
+def _apply(sim: Simulation, bridge: Bridge, message: dict[str, Any]) -> None:
+    op, robot = message.get("op"), message.get("robot")
+    if not isinstance(robot, int) or not 0 <= robot < sim.robots:
+        return
+    if op == "command":
+        apply_command(sim, robot, str(message.get("role")), message.get("value"))
+    elif op == "refused":
+        sim.refused(robot)
+    elif op == "press":
+        publish(bridge, sim.press(robot, bool(message.get("pressed"))))
