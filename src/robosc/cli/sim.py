@@ -84,13 +84,21 @@ def sim(
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     _, plan = supervised(model, include, "a simulation")
     from robosc.runtime.simulator import load_module
+    from robosc.sim.local import COMMAND_ROLES
     from robosc.sim.run import roles
 
     module = load_module(plan)
     used = roles(world, module.Robot.COMMUNICATIONS)
-    if not used:
-        names = ", ".join(sorted(world.topics.values()))
-        raise input_problem(f"{model} uses none of the topics of {world_file} ({names})")
+    commands = [world.topics[role] for role in COMMAND_ROLES]
+    if not set(used) & set(COMMAND_ROLES):
+        raise input_problem(
+            f"{model} sends none of the commands the robots of {world_file} obey ({', '.join(commands)}): "
+            "nothing would move them"
+        )
+    known = {name.lstrip("/") for name in world.topics.values()}
+    for comm in module.Robot.COMMUNICATIONS:
+        if comm.ros_name.lstrip("/") not in known:
+            click.echo(f"robosc: note: the simulator has no {comm.ros_name} ({comm.kind} {comm.name})", err=True)
     if ros != "none":
         _check_middleware(int(ros))
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-sim-"))
@@ -155,7 +163,7 @@ def _print(report: Report, ros: str) -> None:
         if r.reached is not None:
             goal = f"{r.reached:.1f} s"
         elif r.collided_at is not None:
-            goal = f"hit a wall at {r.collided_at:.1f} s"
+            goal = f"hit at {r.collided_at:.1f} s"
         else:
             goal = "not reached"
         table.add_row(r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused))

@@ -135,13 +135,11 @@ class LocalRun:
             for robot in self.robots:
                 robot.tick()
 
-    def run(self, timeout: float) -> bool:
-        """Until every robot reached the goal (True), one collided or ``timeout`` simulated
-        seconds passed (False)."""
-        while self.sim.time < timeout:
+    def run(self, timeout: float) -> tuple[bool, str]:
+        """Until every robot reached the goal, one collided or ``timeout`` simulated seconds
+        passed: (success, why it ended)."""
+        while True:
             self.step()
-            if self.sim.any_collided:
-                return False
-            if self.sim.all_reached:
-                return True
-        return False
+            ended = self.sim.verdict(timeout)
+            if ended is not None:
+                return ended

@@ -90,15 +90,9 @@ def run_local(
         local.record(event_logs(folder, robots))
     started = time.monotonic()
     try:
-        ok = local.run(timeout)
+        ok, why = local.run(timeout)
     finally:
         local.close()
-    if ok:
-        why = "every robot reached the goal"
-    elif sim.any_collided:
-        why = "a robot touched a wall"
-    else:
-        why = f"timeout: {timeout:g} s of simulated time"
     return report(sim, ok, why, time.monotonic() - started, str(folder or ""))
 
 

@@ -120,13 +120,9 @@ def run(
         publish(bridge, out)
         if on_step is not None:
             on_step(sim)
-        if sim.any_collided:
-            hit = [i + 1 for i, s in enumerate(sim.status) if s.collided_at is not None]
-            return False, f"robot {', '.join(map(str, hit))} touched a wall at t = {sim.time:.2f} s"
-        if sim.all_reached:
-            return True, "every robot reached the goal"
-        if sim.time >= timeout:
-            return False, f"timeout: {timeout:g} s of simulated time"
+        ended = sim.verdict(timeout)
+        if ended is not None:
+            return ended
         delay = started + sim.time / speed - time.monotonic()
         if delay > 0:
             time.sleep(delay)

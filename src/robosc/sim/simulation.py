@@ -158,8 +158,8 @@ class Simulation:
             turn = max(-speed * dt, min(speed * dt, drive.turn_left))
             drive.turn_left -= turn
             return 0.0, turn / dt
-        if self.time - drive.commanded_at > self.world.robot.command_timeout + 1e-9:
-            return 0.0, 0.0
+        if self.time - drive.commanded_at >= self.world.robot.command_timeout - 1e-9:
+            return 0.0, 0.0  # obeyed for command_timeout seconds from the step it came in
         return drive.linear, drive.angular
 
     def _observe(self, i: int, body: Body) -> None:
@@ -196,3 +196,15 @@ class Simulation:
     @property
     def any_collided(self) -> bool:
         return any(s.collided_at is not None for s in self.status)
+
+    def verdict(self, timeout: float) -> tuple[bool, str] | None:
+        """How the run ended, (success, why), or None while it goes on: every robot reached
+        the goal, one touched a wall or box, or ``timeout`` seconds of simulated time passed."""
+        if self.any_collided:
+            hit = [f"robot{i + 1}" for i, s in enumerate(self.status) if s.collided_at is not None]
+            return False, f"{', '.join(hit)} touched a wall or box at t = {self.time:.1f} s"
+        if self.all_reached:
+            return True, "every robot reached the goal"
+        if self.time >= timeout - 1e-9:
+            return False, f"timeout: {timeout:g} s of simulated time"
+        return None

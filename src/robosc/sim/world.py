@@ -27,6 +27,11 @@ TOPIC_ROLES: dict[str, str] = {
 }
 
 
+MAX_BYTES = 1_000_000  # a world file is a page of YAML; anything much bigger is a mistake
+MAX_DEPTH = 32  # brackets in brackets (a wall is three deep)
+MAX_LINE = 10_000  # characters
+
+
 class WorldError(Exception):
     """A world file that cannot be used: the message names file, line and column."""
 
@@ -189,19 +194,68 @@ def load_world(path: str | Path) -> World:
     import yaml
 
     name = str(path)
+    text = _read(Path(path), name)
+    _check_depth(text, name)
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)  # libyaml where PyYAML has it
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise WorldError(name, 1, 1, f"cannot read the world file: {exc}") from None
-    try:
-        root = yaml.compose(text)
+        for event in yaml.parse(text, Loader=loader):
+            if isinstance(event, yaml.AliasEvent):  # a world is small: no need to share nodes
+                mark = event.start_mark
+                raise WorldError(name, mark.line + 1, mark.column + 1, "YAML aliases (*name) are not supported here")
+        root = yaml.compose(text, Loader=loader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line, column = (mark.line + 1, mark.column + 1) if mark else (1, 1)
         raise WorldError(name, line, column, f"not valid YAML: {exc.problem or exc.context}") from None
+    except RecursionError:
+        raise WorldError(name, 1, 1, "the world file is nested too deeply") from None
     if root is None:
         raise WorldError(name, 1, 1, "the world file is empty")
     return _world(_Reader(name), root)
+
+
+def _read(path: Path, name: str) -> str:
+    """The text of a regular file of at most ``MAX_BYTES``."""
+    import stat
+
+    try:
+        info = path.stat()
+        if not stat.S_ISREG(info.st_mode):
+            raise WorldError(name, 1, 1, "not a regular file")
+        if info.st_size > MAX_BYTES:
+            raise WorldError(name, 1, 1, f"the world file has {info.st_size:,} bytes; at most {MAX_BYTES:,} are read")
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise WorldError(name, 1, 1, f"cannot read the world file: {exc}") from None
+
+
+def _check_depth(text: str, name: str) -> None:
+    """Refuse brackets nested deeper than ``MAX_DEPTH`` (YAML parsers take time quadratic
+    in the depth) and lines longer than ``MAX_LINE``, before parsing."""
+    for number, text_line in enumerate(text.splitlines(), 1):
+        if len(text_line) > MAX_LINE:
+            raise WorldError(name, number, MAX_LINE + 1, f"line longer than {MAX_LINE:,} characters")
+    depth = 0
+    quote = ""
+    line, column = 1, 0
+    for char in text:
+        column += 1
+        if char == "\n":
+            line, column = line + 1, 0
+            quote = "" if quote == "#" else quote
+        elif quote:
+            if char == quote and quote != "#":
+                quote = ""
+        elif char in "\"'":
+            quote = char
+        elif char == "#":
+            quote = "#"
+        elif char in "[{":
+            depth += 1
+            if depth > MAX_DEPTH:
+                raise WorldError(name, line, column, f"brackets nested more than {MAX_DEPTH} deep")
+        elif char in "]}":
+            depth = max(0, depth - 1)
 
 
 def _world(r: _Reader, root: Any) -> World:
