@@ -7,9 +7,11 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import pytest
+
 from ros_support import _domains, ros1_available, ros2_available, unavailable
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
@@ -56,6 +58,10 @@ def test_the_maze_solver_leaves_the_maze_on_ros(tmp_path: Path, ros: int) -> Non
     # the controller ran on the simulation's clock: its event log is stamped in simulated seconds
     times = sim_times(tmp_path / "events" / "robot1.jsonl")
     assert 0 < times[0] < 1.0 and report.simulated - 2.0 < times[-1] <= report.simulated + 0.5
+    # ... and its timer too: 10 cycles per simulated second, not per wall second
+    cycles = re.search(r"\[robosc\] stopped after (\d+) cycles", (tmp_path / "logs" / "robot1.log").read_text())
+    assert cycles is not None
+    assert abs(int(cycles.group(1)) - 10 * report.simulated) < 0.05 * 10 * report.simulated
 
 
 def test_the_line_follower_stops_for_the_emergency_stop_button_and_before_the_box(ros2, tmp_path: Path) -> None:

@@ -110,8 +110,14 @@ def run_ros(
     domain: int | None = None,
     on_step: Callable[[Simulation], None] | None = None,
     on_start: Callable[[object], None] | None = None,
+    trace: Callable[[str, int, str, float], None] | None = None,
+    params: dict[str, object] | None = None,
 ) -> Report:
-    """The generated controller package on ROS ``ros`` (1 or 2), one node per robot."""
+    """The generated controller package on ROS ``ros`` (1 or 2), one node per robot.
+    ``on_start(graph)`` runs once the nodes are started, ``on_step(sim)`` after each step,
+    ``trace(direction, robot, role, seconds)`` at each message sent ("out") and command come
+    ("in"), with its time.perf_counter();
+    ``params`` are more parameters of the controller nodes."""
     from robosc.codegen.ros import generate, package_name
     from robosc.sim import session
     from robosc.sim.graph import Graph
@@ -131,13 +137,13 @@ def run_ros(
         session.setup(sim, bridge, names, used)
         session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
         for i, (name, log) in enumerate(zip(names, event_logs(folder, robots), strict=True)):
-            params: dict[str, object] = {"rate": float(rate), "seed": seed + i, "event_log": log}
-            graph.controller(package, name, params)
+            given: dict[str, object] = {"rate": float(rate), "seed": seed + i, "event_log": log, **(params or {})}
+            graph.controller(package, name, given)
         if on_start is not None:
             on_start(graph)
         session.wait_for(bridge, session.connected(used, robots), 60 + 2 * robots, "the controllers to connect")
         started = time.monotonic()
-        ok, why = session.run(sim, bridge, timeout, speed, on_step)
+        ok, why = session.run(sim, bridge, timeout, speed, on_step, trace)
         wall = time.monotonic() - started
         dead = [n for n in graph.dead() if n != "simulator"]
         if dead and ok:

@@ -38,6 +38,7 @@ class Bridge:
             except ValueError:
                 continue
             if isinstance(message, dict):
+                message["received"] = time.perf_counter()  # for traces: when it came, not when it was used
                 self.lines.put(message)
         self.lines.put(None)  # the node ended
 
@@ -89,10 +90,16 @@ def connected(roles: list[str], robots: int) -> Callable[[dict[str, Any]], bool]
     return condition
 
 
-def publish(bridge: Bridge, messages: list[Message]) -> None:
+# (direction, robot, role, perf_counter seconds): a message sent ("out"), a command come ("in")
+Trace = Callable[[str, int, str, float], None]
+
+
+def publish(bridge: Bridge, messages: list[Message], trace: Trace | None = None) -> None:
     for m in messages:
         # Python's json writes and reads Infinity (a beam without a return)
         bridge.send("publish", robot=m.robot, role=m.role, value=m.value)
+        if trace is not None:
+            trace("out", m.robot, m.role, time.perf_counter())
 
 
 def run(
@@ -101,6 +108,7 @@ def run(
     timeout: float,
     speed: float = 1.0,
     on_step: Callable[[Simulation], None] | None = None,
+    trace: Trace | None = None,
 ) -> tuple[bool, str]:
     """Step until every robot reached its goal, one collided, or ``timeout`` simulated seconds;
     returns (success, why it ended)."""
@@ -114,10 +122,10 @@ def run(
                 break
             if message is None:
                 return False, "the simulator's node ended"
-            _apply(sim, bridge, message)
+            _apply(sim, bridge, message, trace)
         out = sim.step()
         bridge.send("clock", t=sim.time)
-        publish(bridge, out)
+        publish(bridge, out, trace)
         if on_step is not None:
             on_step(sim)
         ended = sim.verdict(timeout)
@@ -128,13 +136,16 @@ def run(
             time.sleep(delay)
 
 
-def _apply(sim: Simulation, bridge: Bridge, message: dict[str, Any]) -> None:
+def _apply(sim: Simulation, bridge: Bridge, message: dict[str, Any], trace: Trace | None = None) -> None:
     op, robot = message.get("op"), message.get("robot")
     if not isinstance(robot, int) or not 0 <= robot < sim.robots:
         return
     if op == "command":
-        apply_command(sim, robot, str(message.get("role")), message.get("value"))
+        role = str(message.get("role"))
+        if trace is not None:
+            trace("in", robot, role, float(message.get("received", time.perf_counter())))
+        apply_command(sim, robot, role, message.get("value"))
     elif op == "refused":
         sim.refused(robot)
     elif op == "press":
-        publish(bridge, sim.press(robot, bool(message.get("pressed"))))
+        publish(bridge, sim.press(robot, bool(message.get("pressed"))), trace)

@@ -140,6 +140,8 @@ class NodeCore(object):
             raise ValueError("mode must be controller or supervisor")
         self.mode = mode
         self.log = log
+        self.cycles = 0  # timer cycles run so far
+        self.live_view: Any = None
         self.params: Dict[str, Any] = {}
         for p in PARAMETERS:
             value, why = p.check(parameters.get(p.name, p.default))
@@ -236,6 +238,7 @@ class NodeCore(object):
     # ---- the cycle -----------------------------------------------------------------------
     def cycle(self) -> None:
         """The timer: a controller's tick, then the state if asked for."""
+        self.cycles += 1
         if self.mode == "controller":
             try:
                 self.supervisor.tick()
@@ -243,6 +246,16 @@ class NodeCore(object):
                 self.warnings("tick failed: %s: %s" % (type(error).__name__, error), "tick")
         if self.params["publish_state"]:
             self.publish_state()
+
+    def close(self) -> None:
+        """At shutdown: close the live view and the event log, and say how many cycles ran
+        (on standard error: the middleware's logger may be gone already)."""
+        if self.live_view is not None:
+            self.live_view.close()
+        if self.event_log is not None:
+            self.event_log.close()
+        print("[robosc] stopped after %d cycles" % self.cycles, file=sys.stderr)
+        sys.stderr.flush()
 
     def after_message(self) -> None:
         if self.mode == "supervisor":

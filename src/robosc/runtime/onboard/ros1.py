@@ -281,8 +281,5 @@ def main(robot_class: Any, mode: str = "controller", node_name: Optional[str] = 
         return 1
     node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
     rospy.spin()
-    if node.live_view is not None:
-        node.live_view.close()
-    if node.event_log is not None:
-        node.event_log.close()
+    node.close()
     return 0

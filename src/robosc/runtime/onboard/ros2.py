@@ -398,10 +398,7 @@ def main(
             node.log("error", "the node stopped: %s: %s" % (type(error).__name__, error))
             status = 1
     finally:
-        if node.live_view is not None:
-            node.live_view.close()
-        if node.event_log is not None:
-            node.event_log.close()
+        node.close()
         with contextlib.suppress(Exception):  # already gone with its context
             node.destroy_node()
         try_shutdown()
