@@ -40,6 +40,7 @@ COMMANDS = {
     "plot": ("robosc.cli.debug", "plot"),
     "diagram": ("robosc.cli.debug", "diagram"),
     "log": ("robosc.cli.debug", "log_command"),
+    "view": ("robosc.cli.view", "view"),
 }
 
 

@@ -57,6 +57,11 @@ if TYPE_CHECKING:
     help="Keep everything in DIR: the package, node logs, event logs (JSON Lines), the trajectory (MCAP), "
     "the sequence-of-events plot and an animation of the run.",
 )
+@click.option(
+    "--domain",
+    type=click.IntRange(0, 232),
+    help="ROS 2 domain id of the private graph (default: one picked from the process id).",
+)
 @include_option
 def sim(
     world_file: str,
@@ -68,6 +73,7 @@ def sim(
     rate: float,
     seed: int,
     record: str | None,
+    domain: int | None,
     include: tuple[str, ...],
 ) -> None:
     """Drive robots in a 2D WORLD with the controller synthesized from MODEL, end to end:
@@ -82,7 +88,7 @@ def sim(
         raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
-    _, plan = supervised(model, include, "a simulation")
+    result, plan = supervised(model, include, "a simulation")
     from robosc.runtime.simulator import load_module
     from robosc.sim.local import COMMAND_ROLES
     from robosc.sim.run import roles
@@ -103,7 +109,12 @@ def sim(
         _check_middleware(int(ros))
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-sim-"))
     try:
-        report = _run(world, plan, module, ros, robots, timeout, speed, rate, seed, folder)
+        page = None
+        if ros != "none":
+            from robosc.cli.generate import live_page
+
+            page = live_page(result)
+        report = _run(world, plan, module, ros, robots, timeout, speed, rate, seed, folder, page, domain)
         _print(report, ros)
         if record:
             from robosc.sim.recording import write_recording
@@ -127,6 +138,8 @@ def _run(
     rate: float,
     seed: int,
     folder: Path,
+    page: str | None,
+    domain: int | None,
 ) -> Report:
     from robosc.sim.run import run_local, run_ros
     from robosc.sim.session import SessionError
@@ -134,9 +147,24 @@ def _run(
     if ros == "none":
         return run_local(world, module, robots, timeout, rate, seed, folder)  # type: ignore[arg-type]
     try:
-        return run_ros(world, plan, module, int(ros), robots, timeout, speed, rate, seed, folder)  # type: ignore[arg-type]
+        return run_ros(
+            world, plan, module, int(ros), robots, timeout, speed, rate, seed, folder,  # type: ignore[arg-type]
+            domain=domain, on_start=_say_where, page=page,
+        )
     except SessionError as exc:
         raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+
+
+def _say_where(graph: object) -> None:
+    """Where the private graph is, so that the robots can be watched (robosc view) meanwhile."""
+    env = getattr(graph, "env", {})
+    if getattr(graph, "ros", 2) == 1:
+        where = f"ROS_MASTER_URI={env.get('ROS_MASTER_URI')} ROS_HOSTNAME=127.0.0.1"
+        ros = 1
+    else:
+        where = f"ROS_DOMAIN_ID={env.get('ROS_DOMAIN_ID')} ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST"
+        ros = 2
+    click.echo(f"robosc: the robots run on {where} (watch: {where} robosc view --ros {ros})", err=True)
 
 
 def _check_middleware(ros: int) -> None:

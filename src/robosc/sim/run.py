@@ -112,12 +112,14 @@ def run_ros(
     on_start: Callable[[object], None] | None = None,
     trace: Callable[[str, int, str, float], None] | None = None,
     params: dict[str, object] | None = None,
+    page: str | None = None,
 ) -> Report:
     """The generated controller package on ROS ``ros`` (1 or 2), one node per robot.
     ``on_start(graph)`` runs once the nodes are started, ``on_step(sim)`` after each step,
     ``trace(direction, robot, role, seconds)`` at each message sent ("out") and command come
     ("in"), with its time.perf_counter();
-    ``params`` are more parameters of the controller nodes."""
+    ``params`` are more parameters of the controller nodes; ``page`` is the live view's page
+    the package carries (then ``robosc view`` can watch the robots)."""
     from robosc.codegen.ros import generate, package_name
     from robosc.sim import session
     from robosc.sim.graph import Graph
@@ -126,7 +128,7 @@ def run_ros(
         folder = Path(tempfile.mkdtemp(prefix="robosc-sim-"))
     folder.mkdir(parents=True, exist_ok=True)
     package = folder / f"{package_name(plan)}_ros{ros}"  # type: ignore[arg-type]
-    generate(plan, ros, "controller", package, relative=True)  # type: ignore[arg-type]
+    generate(plan, ros, "controller", package, page, relative=True)  # type: ignore[arg-type]
     used = roles(world, module.Robot.COMMUNICATIONS)
     names = robot_names(robots)
     sim = Simulation(world, robots)

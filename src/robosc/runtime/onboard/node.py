@@ -30,6 +30,9 @@ MODES = ("controller", "supervisor")
 CONTROLLER_PREFIX = "robosc/controller"  # where a supervision layer meets the controller
 STATE_TOPIC = "state"
 BLOCKED_TOPIC = "blocked"
+# for ``robosc view`` on another machine: the live view's page (latched) and every event record
+VIEW_PAGE_TOPIC = "live_view/page"
+VIEW_EVENTS_TOPIC = "live_view/events"
 
 
 def default_name(robot_class: Any) -> str:
@@ -76,6 +79,12 @@ PARAMETERS = (
     Parameter("publish_state", False, "publish the state as JSON on 'state' after each cycle"),
     Parameter("tick_on_message", False, "run a cycle right after each message from the robot"),
     Parameter("view_port", 0, "serve the live view on http://127.0.0.1:PORT/ (0: off)", 0, 65535),
+    Parameter(
+        "view_topics",
+        True,
+        "publish the live view's page (latched) on 'live_view/page' and, while someone listens, each event "
+        "on 'live_view/events' (for robosc view on another machine)",
+    ),
     Parameter("qos_depth", 10, "queue depth of every publisher and subscription", 1, 10000),
     Parameter("server_timeout", 5.0, "seconds to wait for a service or action server before a call fails", 0.0, 3600.0),
 )
@@ -199,41 +208,65 @@ class NodeCore(object):
     def start_recording(
         self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
     ) -> None:
-        """Events go to the event log and the live view (a sink), if any, stamped by
-        ``clock``: the node's clock, which is the simulation's under ``use_sim_time``."""
+        """Events go to the event log, the live view (a sink) and the view topics, if any,
+        stamped by ``clock``: the node's clock, which is the simulation's under ``use_sim_time``."""
         if live_view is not None:
             self.sinks.append(live_view)
+        if self.params["view_topics"]:
+            self.sinks.append(self.view_event)
         if self.sinks:
             self.supervisor.observer = Recorder(self.supervisor, self.sinks, clock)
 
-    def open_live_view(self, robot_class: Any) -> Any:
-        """The live view on 127.0.0.1:``view_port`` (the page generated next to the robot's
-        module), or None when it is off or cannot start."""
+    def view_page(self, robot_class: Any) -> Optional[bytes]:
+        """The live view's page generated next to the robot's module, or None (with the reason
+        logged) when the package has none."""
+        module = sys.modules.get(robot_class.__module__)
+        folder = os.path.dirname(os.path.abspath(getattr(module, "__file__", None) or "."))
+        try:
+            with open(os.path.join(folder, "live_view.html"), "rb") as handle:
+                return handle.read()
+        except OSError as error:
+            self.log("warning", "no live view page: %s (generate the package with graphviz)" % (error,))
+            return None
+
+    def open_live_view(self, robot_class: Any, page: Optional[bytes]) -> Any:
+        """The live view on 127.0.0.1:``view_port``, or None when it is off or cannot start."""
         port = self.params["view_port"]
-        if not port:
+        if not port or page is None:
             return None
         from .live_server import LiveView
 
-        module = sys.modules.get(robot_class.__module__)
-        folder = os.path.dirname(os.path.abspath(getattr(module, "__file__", None) or "."))
-        page = os.path.join(folder, "live_view.html")
         try:
-            with open(page, "rb") as handle:
-                view = LiveView(handle.read(), port=port)
+            view = LiveView(page, port=port)
         except (OSError, ValueError) as error:
-            self.log(
-                "error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error)
-            )
+            self.log("error", "live view not started on port %d: %s" % (port, error))
             return None
-        view.last = {
+        view.last = self.state_record()
+        self.log("info", "live view on %s" % view.url)
+        return view
+
+    def state_record(self) -> Dict[str, Any]:
+        """A record of no event with the current state: what a new page starts from."""
+        return {
             "time": round(time.time(), 6),
             "event": None,
             "controllable": False,
             "data": None,
             "state": self.supervisor.snapshot(),
         }
-        self.log("info", "live view on %s" % view.url)
-        return view
+
+    def start_view_topics(self, page: Optional[bytes]) -> None:
+        """After the adapter made the ``live_view/*`` publishers: the page, once (latched),
+        and the current state; each event follows through :meth:`view_event`."""
+        if not self.params["view_topics"] or page is None:
+            return
+        self.publish_text(VIEW_PAGE_TOPIC, page.decode("utf-8", "replace"))
+        self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(self.state_record(), sort_keys=True, default=str))
+
+    def view_event(self, record: Dict[str, Any]) -> None:
+        """A sink: an event record on ``live_view/events`` while anyone subscribes."""
+        if self.text_subscribers(VIEW_EVENTS_TOPIC):
+            self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(record, sort_keys=True, default=str))
 
     # ---- the cycle -----------------------------------------------------------------------
     def cycle(self) -> None:
@@ -373,6 +406,10 @@ class NodeCore(object):
             publisher.publish(self.text_type(data=text))
 
     # ---- implemented by the adapters -------------------------------------------------------
+
+    def text_subscribers(self, topic_name: str) -> int:
+        """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""
+        raise NotImplementedError
 
     def call_service(self, call: Call, request: Any) -> bool:
         raise NotImplementedError

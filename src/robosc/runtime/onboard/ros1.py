@@ -23,7 +23,17 @@ from typing import Any, Callable, Optional
 import rospy
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, controller_side, default_name
+from .node import (
+    BLOCKED_TOPIC,
+    PARAMETERS,
+    STATE_TOPIC,
+    VIEW_EVENTS_TOPIC,
+    VIEW_PAGE_TOPIC,
+    Call,
+    NodeCore,
+    controller_side,
+    default_name,
+)
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
 
@@ -44,9 +54,11 @@ class SupervisorNode(NodeCore):
         self.setup(robot_class, mode, given, _log)
         self.lock = self.supervisor.lock
         self._load_types()
-        self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
+        page = self.view_page(robot_class)
+        self.live_view = self.open_live_view(robot_class, page)  # before anything can deliver an event
         self.start_recording(self.live_view.publish if self.live_view is not None else None, rospy.get_time)
         self._create()
+        self.start_view_topics(page)
         self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
 
     def _load_types(self) -> None:
@@ -64,6 +76,9 @@ class SupervisorNode(NodeCore):
         depth = self.params["qos_depth"]
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
+        if self.params["view_topics"]:  # latched: a viewer that comes later gets the page and the last event
+            for name in (VIEW_PAGE_TOPIC, VIEW_EVENTS_TOPIC):
+                self.text_publishers[name] = rospy.Publisher(name, self.text_type, queue_size=100, latch=True)
         if supervising:
             self.text_publishers[BLOCKED_TOPIC] = rospy.Publisher(BLOCKED_TOPIC, self.text_type, queue_size=depth)
         for topic in self.outputs.values():
@@ -110,6 +125,10 @@ class SupervisorNode(NodeCore):
         NodeCore.cycle(self)
 
     # ---- services and actions of a controller --------------------------------------------------------
+    def text_subscribers(self, topic_name: str) -> int:
+        publisher = self.text_publishers.get(topic_name)
+        return int(publisher.get_num_connections()) if publisher is not None else 0
+
     def call_service(self, call: Call, request: Any) -> bool:
         return self.on_a_thread(self.call_now, call, request)
 

@@ -31,12 +31,22 @@ from rclpy.action.server import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
 from .messages import MissingType, load
-from .node import BLOCKED_TOPIC, PARAMETERS, STATE_TOPIC, Call, NodeCore, controller_side, default_name
+from .node import (
+    BLOCKED_TOPIC,
+    PARAMETERS,
+    STATE_TOPIC,
+    VIEW_EVENTS_TOPIC,
+    VIEW_PAGE_TOPIC,
+    Call,
+    NodeCore,
+    controller_side,
+    default_name,
+)
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
 SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers
@@ -58,9 +68,11 @@ class SupervisorNode(Node, NodeCore):
         self.lock = self.supervisor.lock
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
-        self.live_view = self.open_live_view(robot_class)  # before anything can deliver an event
+        page = self.view_page(robot_class)
+        self.live_view = self.open_live_view(robot_class, page)  # before anything can deliver an event
         self.start_recording(self.live_view.publish if self.live_view is not None else None, self._now)
         self._create()
+        self.start_view_topics(page)
         self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
 
     # ---- set-up ----------------------------------------------------------------------------
@@ -95,6 +107,12 @@ class SupervisorNode(Node, NodeCore):
         overrides = QoSOverridingOptions.with_default_policies()
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10)}
+        if self.params["view_topics"]:  # transient local: a viewer that comes later gets the page and last events
+            latched = QoSProfile(
+                depth=depth, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
+            )
+            for name in (VIEW_PAGE_TOPIC, VIEW_EVENTS_TOPIC):
+                self.text_publishers[name] = self.create_publisher(self.text_type, name, latched)
         if supervising:
             self.text_publishers[BLOCKED_TOPIC] = self.create_publisher(self.text_type, BLOCKED_TOPIC, reliable)
         for topic in self.outputs.values():  # commands to the robot
@@ -185,6 +203,10 @@ class SupervisorNode(Node, NodeCore):
                 self.answer(call.error, None)
 
         state["timer"] = self.create_timer(POLL_SECONDS, self.callback(poll))
+
+    def text_subscribers(self, topic_name: str) -> int:
+        publisher = self.text_publishers.get(topic_name)
+        return int(publisher.get_subscription_count()) if publisher is not None else 0
 
     def call_service(self, call: Call, request: Any) -> bool:
         call.goal += 1

@@ -1,0 +1,74 @@
+"""``robosc view --ros 1|2 [--namespace NS] [--port PORT]``: the live view of a running controller."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import click
+
+from robosc.cli.common import EXIT_OK, exit_with, input_problem
+
+
+@click.command()
+@click.option("--ros", type=click.Choice(["1", "2"]), required=True, help="The ROS graph to look on.")
+@click.option("--namespace", help="The controller to watch, by namespace (/robot1); asked for when there are several.")
+@click.option("--port", type=click.IntRange(0, 65535), default=8765, show_default=True, help="Port on 127.0.0.1 (0: any free one).")
+@click.option(
+    "--discover",
+    type=click.FloatRange(0.1, 60.0),
+    default=2.0,
+    show_default=True,
+    help="Seconds to look for running controllers.",
+)
+@click.option("--list", "list_only", is_flag=True, help="Only list the controllers found.")
+def view(ros: str, namespace: str | None, port: int, discover: float, list_only: bool) -> None:
+    """Watch a controller that runs elsewhere on the ROS graph: its live view (the page it
+    publishes on live_view/page, fed by live_view/events) served on this machine's 127.0.0.1.
+    The environment says where the graph is (ROS_MASTER_URI; ROS_DOMAIN_ID)."""
+    from robosc.debug.remote import Listener, RemoteError, find_robots, watch
+
+    try:
+        listener = Listener(int(ros), discover)
+    except RemoteError as exc:
+        raise input_problem(str(exc)) from None
+    try:
+        robots = find_robots(listener)
+        if list_only:
+            for robot in robots:
+                click.echo(robot)
+            raise exit_with(EXIT_OK)
+        chosen = _choose(robots, namespace, ros)
+        served = watch(listener, chosen, port)
+        click.echo(f"live view of {chosen} on {served.url}  (Ctrl-C to stop)", err=True)
+        try:
+            while listener.process.poll() is None:
+                time.sleep(0.2)
+        except KeyboardInterrupt:
+            pass
+        served.close()
+        if listener.process.poll() is not None and listener.process.returncode not in (0, None):
+            raise input_problem("the ROS listener ended" + listener.why())
+    except RemoteError as exc:
+        raise input_problem(str(exc)) from None
+    finally:
+        listener.close()
+    raise exit_with(EXIT_OK)
+
+
+def _choose(robots: list[str], namespace: str | None, ros: str) -> str:
+    if not robots:
+        raise input_problem(f"no running robosc controller publishes its live view on this ROS {ros} graph")
+    if namespace is not None:
+        wanted = "/" + namespace.strip("/") if namespace.strip("/") else "/"
+        if wanted not in robots:
+            raise input_problem(f"no controller in {wanted}; found: {', '.join(robots)}")
+        return wanted
+    if len(robots) == 1:
+        return robots[0]
+    if not sys.stdin.isatty():
+        raise input_problem(f"{len(robots)} controllers found ({', '.join(robots)}): choose one with --namespace")
+    for i, robot in enumerate(robots, 1):
+        click.echo(f"  {i}. {robot}", err=True)
+    index = click.prompt("watch which", type=click.IntRange(1, len(robots)), default=1, err=True)
+    return robots[index - 1]

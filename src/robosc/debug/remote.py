@@ -1,0 +1,149 @@
+"""``robosc view``: the live view of a controller running elsewhere on the ROS graph. The
+controller publishes its page (latched) and its events on ``live_view/*``; a listener under
+the middleware's interpreter (``remote_listener.py``) passes them here, and the page is served
+on this machine's 127.0.0.1, fed as if the node served it itself.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import queue
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import IO, Any
+
+LISTENER = Path(__file__).resolve().parent / "remote_listener.py"
+
+
+class RemoteError(Exception):
+    """No controller found, or the middleware could not be reached."""
+
+
+class Listener:
+    """The listener process; its lines on a queue (None: it ended)."""
+
+    def __init__(self, ros: int, discover: float = 2.0) -> None:
+        if ros == 1:
+            python = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
+            env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON")}
+        else:
+            python = sys.executable
+            env = dict(os.environ)
+        env["PYTHONUNBUFFERED"] = "1"
+        try:
+            self.process = subprocess.Popen(
+                [python, str(LISTENER), str(ros), str(discover)],
+                env=env,
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+            )
+        except OSError as exc:
+            raise RemoteError(f"cannot start {python}: {exc.strerror or exc}") from None
+        assert self.process.stdout is not None and self.process.stderr is not None
+        self.lines: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        self.errors: list[str] = []
+        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
+        threading.Thread(target=self._errors, args=(self.process.stderr,), daemon=True).start()
+
+    def _read(self, stream: IO[bytes]) -> None:
+        for raw in stream:
+            try:
+                message = json.loads(raw)
+            except ValueError:
+                continue
+            if isinstance(message, dict):
+                self.lines.put(message)
+        self.lines.put(None)
+
+    def _errors(self, stream: IO[bytes]) -> None:
+        for raw in stream:
+            self.errors = [*self.errors[-19:], raw.decode("utf-8", "replace").rstrip()]
+
+    def send(self, op: str, **fields: Any) -> None:
+        fields["op"] = op
+        assert self.process.stdin is not None
+        try:
+            self.process.stdin.write((json.dumps(fields) + "\n").encode())
+            self.process.stdin.flush()
+        except (BrokenPipeError, ValueError, OSError):
+            raise RemoteError("the ROS listener ended" + self.why()) from None
+
+    def expect(self, op: str, timeout: float) -> dict[str, Any]:
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            try:
+                message = self.lines.get(timeout=0.1)
+            except queue.Empty:
+                continue
+            if message is None:
+                raise RemoteError("the ROS listener ended" + self.why())
+            if message.get("op") == op:
+                return message
+        raise RemoteError(f"nothing came from ROS in {timeout:g} s")
+
+    def why(self) -> str:
+        time.sleep(0.2)  # its last words
+        return (":\n" + "\n".join(self.errors[-8:])) if self.errors else ""
+
+    def close(self) -> None:
+        with contextlib.suppress(RemoteError):
+            self.send("quit")
+        try:
+            self.process.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+
+
+def find_robots(listener: Listener, timeout: float = 60.0) -> list[str]:
+    """The namespaces of the controllers that publish their live view."""
+    robots = listener.expect("robots", timeout).get("robots")
+    return [str(r) for r in robots] if isinstance(robots, list) else []
+
+
+def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float = 20.0) -> Any:
+    """Serve the live view of the controller in ``namespace`` on 127.0.0.1:``port``; its
+    events follow on a thread of their own. Returns the LiveView (``.url``, ``.close()``)."""
+    from robosc.runtime.onboard.live_server import LiveView
+
+    listener.send("watch", namespace=namespace)
+    early: list[dict[str, Any]] = []  # events that came before the page
+    end = time.monotonic() + timeout
+    page = None
+    while page is None:
+        if time.monotonic() > end:
+            raise RemoteError(f"no live view page came from {namespace} in {timeout:g} s")
+        try:
+            message = listener.lines.get(timeout=0.1)
+        except queue.Empty:
+            continue
+        if message is None:
+            raise RemoteError("the ROS listener ended" + listener.why())
+        if message.get("op") == "page":
+            page = str(message.get("html", ""))
+        elif message.get("op") == "event" and isinstance(message.get("record"), dict):
+            early.append(message["record"])
+    try:
+        view = LiveView(page, port=port)
+    except OSError as exc:
+        raise RemoteError(f"cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
+
+    def forward() -> None:
+        while True:
+            message = listener.lines.get()
+            if message is None:
+                return
+            record = message.get("record")
+            if message.get("op") == "event" and isinstance(record, dict):
+                view.publish(record)
+
+    for record in early:
+        view.publish(record)
+    threading.Thread(target=forward, name="robosc-view", daemon=True).start()
+    return view
