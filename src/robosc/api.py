@@ -8,7 +8,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
@@ -24,6 +24,8 @@ from robosc.record import field, record
 if TYPE_CHECKING:
     from robosc.runtime.plan import Plan
     from robosc.runtime.simulator import Simulator
+    from robosc.sim.run import Report
+    from robosc.sim.world import World
     from robosc.synthesis.result import SynthesisResult
 
 __all__ = [
@@ -36,6 +38,7 @@ __all__ = [
     "format_text",
     "load_model",
     "plan_supervisor",
+    "run_world",
     "simulator",
     "supervisor_module",
     "synthesize_file",
@@ -180,3 +183,37 @@ def simulator(result: SynthesisResult, seed: int | None = None, log: TextIO | No
     from robosc.runtime.simulator import Simulator
 
     return Simulator(result, plan_supervisor(result), seed=seed, log=log)
+
+
+def run_world(
+    world: str | Path | World,
+    result: SynthesisResult,
+    ros: int | None = None,
+    robots: int = 1,
+    timeout: float = 300.0,
+    speed: float = 4.0,
+    rate: float = 10.0,
+    seed: int = 0,
+    folder: Path | None = None,
+    domain: int | None = None,
+    page: str | None = None,
+    on_start: Callable[[object], None] | None = None,
+) -> Report:
+    """Drive ``robots`` robots in a 2D world (a world file or a loaded one) with the
+    controller of a successful synthesis ``result``: on ROS ``ros`` (1 or 2: the generated
+    package on a private graph, paced at ``speed`` times real time) or, with None, in this
+    process. The run ends when every robot reached the goal (``report.ok``), one touched
+    something, or ``timeout`` simulated seconds passed. Raises ``robosc.sim.world.WorldError``
+    for a bad world file and ``robosc.sim.session.SessionError`` when the middleware does not
+    come up; ``folder`` keeps the package, logs and event logs (else a temporary one is used
+    for ROS runs); ``on_start(graph)`` is called once the ROS nodes are started."""
+    from robosc.runtime.simulator import load_module
+    from robosc.sim.run import run_local, run_ros
+    from robosc.sim.world import load_world
+
+    loaded = world if not isinstance(world, str | Path) else load_world(world)
+    plan = plan_supervisor(result)
+    module = load_module(plan)
+    if ros is None:
+        return run_local(loaded, module, robots, timeout, rate, seed, folder)
+    return run_ros(loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, page=page, on_start=on_start)

@@ -41,6 +41,7 @@ COMMANDS = {
     "diagram": ("robosc.cli.debug", "diagram"),
     "log": ("robosc.cli.debug", "log_command"),
     "view": ("robosc.cli.view", "view"),
+    "lsp": ("robosc.cli.lsp", "lsp"),
 }
 
 

@@ -7,7 +7,7 @@ import os
 import shutil
 import tempfile
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -114,7 +114,10 @@ def sim(
             from robosc.cli.generate import live_page
 
             page = live_page(result)
-        report = _run(world, plan, module, ros, robots, timeout, speed, rate, seed, folder, page, domain)
+        report = _run(
+            result, world, ros, folder, page,
+            robots=robots, timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain,
+        )
         _print(report, ros)
         if record:
             from robosc.sim.recording import write_recording
@@ -127,30 +130,14 @@ def sim(
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
 
-def _run(
-    world: object,
-    plan: object,
-    module: object,
-    ros: str,
-    robots: int,
-    timeout: float,
-    speed: float,
-    rate: float,
-    seed: int,
-    folder: Path,
-    page: str | None,
-    domain: int | None,
-) -> Report:
-    from robosc.sim.run import run_local, run_ros
+def _run(result: object, world: object, ros: str, folder: Path, page: str | None, **options: Any) -> Report:
+    from robosc.api import run_world
     from robosc.sim.session import SessionError
 
     if ros == "none":
-        return run_local(world, module, robots, timeout, rate, seed, folder)  # type: ignore[arg-type]
+        return run_world(world, result, None, folder=folder, **options)  # type: ignore[arg-type]
     try:
-        return run_ros(
-            world, plan, module, int(ros), robots, timeout, speed, rate, seed, folder,  # type: ignore[arg-type]
-            domain=domain, on_start=_say_where, page=page,
-        )
+        return run_world(world, result, int(ros), folder=folder, page=page, on_start=_say_where, **options)  # type: ignore[arg-type]
     except SessionError as exc:
         raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
 

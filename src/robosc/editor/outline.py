@@ -1,0 +1,50 @@
+"""The outline of a model file (LSP document symbols) from its syntax tree, so that it is
+there while the model still has errors, as long as it parses."""
+
+from __future__ import annotations
+
+from lsprotocol import types as lsp
+
+from robosc.editor.positions import to_range
+from robosc.language import syntax as s
+from robosc.language.source import Span
+
+Kind = lsp.SymbolKind
+
+
+def outline(tree: s.FileSyntax, lines: list[str]) -> list[lsp.DocumentSymbol]:
+    def symbol(name: str, kind: lsp.SymbolKind, span: Span, name_span: Span, detail: str = "", children=()):  # type: ignore[no-untyped-def]
+        whole, selected = to_range(span, lines), to_range(name_span, lines)
+        return lsp.DocumentSymbol(
+            name=name, kind=kind, range=whole, selection_range=selected, detail=detail or None, children=list(children)
+        )
+
+    out = []
+    for d in tree.definitions:
+        if isinstance(d, s.LocalComponentSyntax):
+            children = []
+            for item in d.items:
+                if isinstance(item, s.BehaviourSyntax):
+                    for b in item.items:
+                        if isinstance(b, s.StateSyntax):
+                            children.append(symbol(b.name.text, Kind.Enum, b.span, b.name.span, "state"))
+                        elif isinstance(b, s.VariableSyntax):
+                            children.append(symbol(b.name.text, Kind.Variable, b.span, b.name.span, "variable"))
+                else:
+                    kind = type(item).__name__.removesuffix("Syntax").lower()
+                    children.append(symbol(item.name.text, Kind.Event, item.span, item.name.span, kind))
+            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, "component", children))
+        elif isinstance(d, s.ImportedComponentSyntax):
+            detail = f"from {d.library.text}.{d.component.text}"
+            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, detail))
+        elif isinstance(d, s.RequirementSyntax):
+            names = ", ".join(n.text for n in d.events.names)
+            out.append(symbol(f"requirement {names} {d.kind}", Kind.Property, d.span, d.events.span))
+        elif isinstance(d, s.ProvideSyntax):
+            out.append(symbol(f"provide {d.communication.text}", Kind.Constant, d.span, d.communication.span))
+        elif isinstance(d, s.ObjectTypeSyntax | s.EnumTypeSyntax):
+            shape = Kind.Struct if isinstance(d, s.ObjectTypeSyntax) else Kind.Enum
+            out.append(symbol(d.name.text, shape, d.span, d.name.span, "datatype"))
+        elif isinstance(d, s.InterfaceSyntax):
+            out.append(symbol(d.name.text, Kind.Interface, d.span, d.name.span, "interface"))
+    return out

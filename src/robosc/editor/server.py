@@ -1,0 +1,128 @@
+"""``robosc lsp``: the language server (pygls, over stdio). Documents are checked on open
+and, debounced, on change, by the same language stage as ``robosc check``; the outline comes
+from the syntax tree; formatting is ``robosc fmt``. A request that fails answers with nothing
+rather than ending the server."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from lsprotocol import types as lsp
+from pygls.lsp.server import LanguageServer
+from pygls.uris import from_fs_path, to_fs_path
+
+from robosc import __version__
+from robosc.editor.diagnostics import by_file
+from robosc.editor.outline import outline
+
+DEBOUNCE_SECONDS = 0.1
+log = logging.getLogger(__name__)
+
+
+class RoboscServer(LanguageServer):
+    def __init__(self, search_paths: Sequence[str] = ()) -> None:
+        super().__init__("robosc", __version__)
+        self.search_paths = [Path(p) for p in search_paths]
+        self.pending: dict[str, asyncio.TimerHandle] = {}
+        self.published: dict[str, set[str]] = {}  # document uri -> uris it published diagnostics for
+
+    def path_of(self, uri: str) -> str:
+        return to_fs_path(uri) or uri
+
+    def check(self, uri: str) -> None:
+        """Check the open document ``uri`` and publish what it found, in it and in its libraries."""
+        from robosc.api import check_text
+
+        self.pending.pop(uri, None)
+        try:
+            document = self.workspace.get_text_document(uri)
+            result = check_text(document.source, self.path_of(uri), self.search_paths)
+            found = by_file(result)
+        except Exception:  # never end the server on a model
+            log.exception("checking %s failed", uri)
+            return
+        published = set()
+        for path, diagnostics in found.items():
+            target = uri if path == self.path_of(uri) else (from_fs_path(path) or path)
+            published.add(target)
+            self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=diagnostics))
+        for stale in self.published.get(uri, set()) - published:
+            self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=stale, diagnostics=[]))
+        self.published[uri] = published
+
+    def schedule(self, uri: str) -> None:
+        """Check ``uri`` once typing pauses for DEBOUNCE_SECONDS."""
+        old = self.pending.pop(uri, None)
+        if old is not None:
+            old.cancel()
+        loop = asyncio.get_event_loop()
+        self.pending[uri] = loop.call_later(DEBOUNCE_SECONDS, self.check, uri)
+
+
+def create(search_paths: Sequence[str] = ()) -> RoboscServer:
+    server = RoboscServer(search_paths)
+
+    @server.feature(lsp.INITIALIZE)
+    def initialize(ls: RoboscServer, params: lsp.InitializeParams) -> None:
+        options = params.initialization_options
+        if isinstance(options, dict) and isinstance(options.get("searchPaths"), list):
+            ls.search_paths += [Path(str(p)) for p in options["searchPaths"]]
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
+    def did_open(ls: RoboscServer, params: lsp.DidOpenTextDocumentParams) -> None:
+        ls.check(params.text_document.uri)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
+    def did_change(ls: RoboscServer, params: lsp.DidChangeTextDocumentParams) -> None:
+        ls.schedule(params.text_document.uri)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
+    def did_close(ls: RoboscServer, params: lsp.DidCloseTextDocumentParams) -> None:
+        uri = params.text_document.uri
+        handle = ls.pending.pop(uri, None)
+        if handle is not None:
+            handle.cancel()
+        for target in ls.published.pop(uri, {uri}):
+            ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=[]))
+
+    @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    def symbols(ls: RoboscServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol] | None:
+        from robosc.language.parser import parse_source
+        from robosc.language.source import SourceFile
+
+        try:
+            document = ls.workspace.get_text_document(params.text_document.uri)
+            parsed = parse_source(SourceFile(ls.path_of(document.uri), document.source))
+            if parsed.syntax is None:
+                return None
+            return outline(parsed.syntax, document.source.splitlines())
+        except Exception:
+            log.exception("outline failed")
+            return None
+
+    @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)
+    def formatting(ls: RoboscServer, params: lsp.DocumentFormattingParams) -> list[lsp.TextEdit] | None:
+        from robosc.api import format_text
+
+        try:
+            document = ls.workspace.get_text_document(params.text_document.uri)
+            formatted = format_text(document.source, ls.path_of(document.uri))
+        except Exception:
+            log.exception("formatting failed")
+            return None
+        if not isinstance(formatted, str) or formatted == document.source:
+            return None if not isinstance(formatted, str) else []
+        lines = document.source.splitlines(keepends=True)
+        end = lsp.Position(line=len(lines), character=0)
+        return [lsp.TextEdit(range=lsp.Range(start=lsp.Position(line=0, character=0), end=end), new_text=formatted)]
+
+    return server
+
+
+def serve(search_paths: Sequence[str] = ()) -> Any:
+    """Run the server on standard input and output until the client ends it."""
+    return create(search_paths).start_io()

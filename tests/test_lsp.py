@@ -1,0 +1,163 @@
+"""``robosc lsp`` end to end: a real LSP client (pytest-lsp) talks to the server over stdio."""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("pygls", reason="robosc lsp needs pygls (pip install '.[lsp]')")
+
+import pytest_lsp
+from lsprotocol import types as lsp
+from pytest_lsp import ClientServerConfig, LanguageClient, client_capabilities
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLES = ROOT / "examples"
+
+
+@pytest_lsp.fixture(config=ClientServerConfig(server_command=[sys.executable, "-m", "robosc", "lsp"]))
+async def client(lsp_client: LanguageClient):
+    await lsp_client.initialize_session(
+        lsp.InitializeParams(capabilities=client_capabilities("visual-studio-code"), root_uri=EXAMPLES.as_uri())
+    )
+    yield
+    await lsp_client.shutdown_session()
+
+
+def open_document(client: LanguageClient, path: Path, text: str | None = None, version: int = 1) -> str:
+    uri = path.as_uri()
+    client.diagnostics.clear()
+    client.text_document_did_open(
+        lsp.DidOpenTextDocumentParams(
+            text_document=lsp.TextDocumentItem(
+                uri=uri, language_id="robosc", version=version, text=path.read_text() if text is None else text
+            )
+        )
+    )
+    return uri
+
+
+def change(client: LanguageClient, uri: str, text: str, version: int) -> None:
+    client.diagnostics.clear()
+    client.text_document_did_change(
+        lsp.DidChangeTextDocumentParams(
+            text_document=lsp.VersionedTextDocumentIdentifier(uri=uri, version=version),
+            content_changes=[lsp.TextDocumentContentChangeWholeDocument(text=text)],
+        )
+    )
+
+
+async def diagnostics_of(client: LanguageClient, uri: str, timeout: float = 20.0) -> list[lsp.Diagnostic]:
+    """The diagnostics published for ``uri`` since the last open or change (a test fails, not
+    hangs, without them)."""
+    end = asyncio.get_running_loop().time() + timeout
+    while uri not in client.diagnostics:
+        if asyncio.get_running_loop().time() > end:
+            raise AssertionError(f"no diagnostics for {uri} in {timeout:g} s")
+        await asyncio.sleep(0.01)
+    return list(client.diagnostics.pop(uri))
+
+
+@pytest.mark.asyncio
+async def test_diagnostics_on_open_and_on_change(client: LanguageClient, tmp_path: Path) -> None:
+    text = (EXAMPLES / "maze_solver.rscd").read_text()
+    path = tmp_path / "maze_solver.rscd"
+    uri = open_document(client, path, text)
+    assert await diagnostics_of(client, uri) == []  # the example is clean
+    broken = text.replace("Distance.front = wall_front", "Distance.fron = wall_front")
+    change(client, uri, broken, 2)
+    found = await diagnostics_of(client, uri)
+    assert len(found) == 1
+    d = found[0]
+    line = broken.splitlines().index(next(x for x in broken.splitlines() if "Distance.fron =" in x))
+    column = broken.splitlines()[line].index("fron")
+    assert d.severity == lsp.DiagnosticSeverity.Error and d.source == "robosc"
+    assert d.code == "rule-14"  # the code robosc check gives
+    assert (d.range.start.line, d.range.start.character) == (line, column)
+    assert (d.range.end.line, d.range.end.character) == (line, column + len("fron"))
+    assert d.message == "unknown state or variable 'fron' in component 'Distance'\nhint: did you mean 'front'?"
+    change(client, uri, text, 3)  # fixed again
+    assert await diagnostics_of(client, uri) == []
+
+
+@pytest.mark.asyncio
+async def test_errors_inside_a_library_go_to_the_library(client: LanguageClient, tmp_path: Path) -> None:
+    library = (EXAMPLES / "emergency_stop.rscd").read_text()
+    (tmp_path / "emergency_stop.rscd").write_text(library.replace("goto stopped", "goto stoped", 1))
+    model = tmp_path / "line_follower.rscd"
+    uri = open_document(client, model, (EXAMPLES / "line_follower.rscd").read_text())
+    in_library = await diagnostics_of(client, (tmp_path / "emergency_stop.rscd").as_uri())
+    assert in_library and all(d.severity == lsp.DiagnosticSeverity.Error for d in in_library)
+    assert "'stoped'" in in_library[0].message and in_library[0].range.start.line == 9
+    await diagnostics_of(client, uri)  # the model's own, published too
+
+
+@pytest.mark.asyncio
+async def test_outline_of_a_model(client: LanguageClient) -> None:
+    uri = open_document(client, EXAMPLES / "maze_solver.rscd")
+    symbols = await client.text_document_document_symbol_async(
+        lsp.DocumentSymbolParams(text_document=lsp.TextDocumentIdentifier(uri=uri))
+    )
+    assert symbols is not None
+    names = [(s.name, s.detail) for s in symbols]
+    assert ("Distance", "component") in names and ("Platform", "component") in names
+    assert ("WallFront", "datatype") in names and ("laser_scan", "interface") in names
+    assert "requirement movement needs" in [s.name for s in symbols]
+    platform = next(s for s in symbols if s.name == "Platform")
+    children = [(c.name, c.detail) for c in platform.children or []]
+    assert ("movement", "message") in children and ("ready", "state") in children and ("turning", "state") in children
+    line = (EXAMPLES / "maze_solver.rscd").read_text().splitlines().index("    component Platform {")
+    assert platform.selection_range.start == lsp.Position(line=line, character=14)
+
+
+@pytest.mark.asyncio
+async def test_formatting_is_robosc_fmt(client: LanguageClient, tmp_path: Path) -> None:
+    messy = "robot   R {\ncomponent S {\n   outgoing message sense with type: boolean\n}\n}\n"
+    uri = open_document(client, tmp_path / "r.rscd", messy)
+    edits = await client.text_document_formatting_async(
+        lsp.DocumentFormattingParams(
+            text_document=lsp.TextDocumentIdentifier(uri=uri), options=lsp.FormattingOptions(tab_size=4, insert_spaces=True)
+        )
+    )
+    from robosc.api import format_text
+
+    assert edits is not None and len(edits) == 1
+    assert edits[0].new_text == format_text(messy) and edits[0].range.start == lsp.Position(line=0, character=0)
+
+
+@pytest.mark.asyncio
+async def test_the_server_survives_any_text(client: LanguageClient, tmp_path: Path) -> None:
+    text = (EXAMPLES / "pick_and_light.rscd").read_text()
+    (tmp_path / "emergency_stop.rscd").write_text((EXAMPLES / "emergency_stop.rscd").read_text())
+    uri = open_document(client, tmp_path / "p.rscd", text)
+    await diagnostics_of(client, uri)
+    import random
+
+    rng = random.Random(7)
+    version = 1
+    for _ in range(30):  # cut, duplicate and garble parts of the model
+        a, b = sorted(rng.randrange(len(text)) for _ in range(2))
+        mutated = rng.choice([text[:a] + text[b:], text[:b] + text[a:], text[:a] + "\x00{^(" + text[a:], text[:a]])
+        version += 1
+        change(client, uri, mutated, version)
+        await diagnostics_of(client, uri)
+        symbols = await client.text_document_document_symbol_async(
+            lsp.DocumentSymbolParams(text_document=lsp.TextDocumentIdentifier(uri=uri))
+        )
+        assert symbols is None or isinstance(symbols, list)
+    change(client, uri, text, version + 1)
+    assert await diagnostics_of(client, uri) == []
+
+
+def test_positions_count_utf16_units() -> None:
+    from robosc.editor.positions import to_offset, to_range
+    from robosc.language.source import Span
+
+    lines = ['x := "é😀" + nope']
+    column = lines[0].index("nope") + 1  # characters, from 1
+    r = to_range(Span("f", 1, column, 1, column + 4, 0, 0), lines)
+    assert (r.start.line, r.start.character, r.end.character) == (0, column - 1 + 1, column - 1 + 1 + 4)  # 😀 is two units
+    assert to_offset(lines[0], lsp.Position(line=0, character=r.start.character)) == column - 1
