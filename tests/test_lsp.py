@@ -114,6 +114,21 @@ async def test_outline_of_a_model(client: LanguageClient) -> None:
 
 
 @pytest.mark.asyncio
+async def test_folding_ranges(client: LanguageClient) -> None:
+    uri = open_document(client, EXAMPLES / "maze_solver.rscd")
+    ranges = await client.text_document_folding_range_async(
+        lsp.FoldingRangeParams(text_document=lsp.TextDocumentIdentifier(uri=uri))
+    )
+    lines = (EXAMPLES / "maze_solver.rscd").read_text().splitlines()
+    platform = lines.index("    component Platform {")
+    ready = next(i for i, line in enumerate(lines) if "initial marked state ready {" in line)
+    spans = {(r.start_line, r.end_line) for r in ranges or []}
+    assert (ready, ready + 3) in spans  # the state ready { ... } over its four lines
+    assert any(start == platform and end > ready for start, end in spans)
+    assert all(end > start for start, end in spans)
+
+
+@pytest.mark.asyncio
 async def test_formatting_is_robosc_fmt(client: LanguageClient, tmp_path: Path) -> None:
     messy = "robot   R {\ncomponent S {\n   outgoing message sense with type: boolean\n}\n}\n"
     uri = open_document(client, tmp_path / "r.rscd", messy)

@@ -6,8 +6,6 @@ on this machine's 127.0.0.1, fed as if the node served it itself.
 
 from __future__ import annotations
 
-import contextlib
-import json
 import os
 import queue
 import subprocess
@@ -16,6 +14,8 @@ import threading
 import time
 from pathlib import Path
 from typing import IO, Any
+
+from robosc.jsonlines import LinePeer, PeerGone
 
 LISTENER = Path(__file__).resolve().parent / "remote_listener.py"
 
@@ -45,33 +45,20 @@ class Listener:
             )
         except OSError as exc:
             raise RemoteError(f"cannot start {python}: {exc.strerror or exc}") from None
-        assert self.process.stdout is not None and self.process.stderr is not None
-        self.lines: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        self.peer = LinePeer(self.process)
+        self.lines = self.peer.lines
         self.errors: list[str] = []
-        threading.Thread(target=self._read, args=(self.process.stdout,), daemon=True).start()
+        assert self.process.stderr is not None
         threading.Thread(target=self._errors, args=(self.process.stderr,), daemon=True).start()
-
-    def _read(self, stream: IO[bytes]) -> None:
-        for raw in stream:
-            try:
-                message = json.loads(raw)
-            except ValueError:
-                continue
-            if isinstance(message, dict):
-                self.lines.put(message)
-        self.lines.put(None)
 
     def _errors(self, stream: IO[bytes]) -> None:
         for raw in stream:
             self.errors = [*self.errors[-19:], raw.decode("utf-8", "replace").rstrip()]
 
     def send(self, op: str, **fields: Any) -> None:
-        fields["op"] = op
-        assert self.process.stdin is not None
         try:
-            self.process.stdin.write((json.dumps(fields) + "\n").encode())
-            self.process.stdin.flush()
-        except (BrokenPipeError, ValueError, OSError):
+            self.peer.send(op, **fields)
+        except PeerGone:
             raise RemoteError("the ROS listener ended" + self.why()) from None
 
     def expect(self, op: str, timeout: float) -> dict[str, Any]:
@@ -92,8 +79,7 @@ class Listener:
         return (":\n" + "\n".join(self.errors[-8:])) if self.errors else ""
 
     def close(self) -> None:
-        with contextlib.suppress(RemoteError):
-            self.send("quit")
+        self.peer.quit()
         try:
             self.process.wait(timeout=5)
         except subprocess.TimeoutExpired:

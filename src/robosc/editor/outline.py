@@ -48,3 +48,20 @@ def outline(tree: s.FileSyntax, lines: list[str]) -> list[lsp.DocumentSymbol]:
         elif isinstance(d, s.InterfaceSyntax):
             out.append(symbol(d.name.text, Kind.Interface, d.span, d.name.span, "interface"))
     return out
+
+
+def folds(tree: s.FileSyntax) -> list[lsp.FoldingRange]:
+    """A folding range for every definition, behaviour and state that spans lines."""
+    spans: list[Span] = []
+    for d in tree.definitions:
+        spans.append(d.span)
+        if isinstance(d, s.LocalComponentSyntax):
+            for item in d.items:
+                if isinstance(item, s.BehaviourSyntax):
+                    spans.append(item.span)
+                    spans += [b.span for b in item.items if isinstance(b, s.StateSyntax)]
+    return [
+        lsp.FoldingRange(start_line=span.line - 1, end_line=span.end_line - 1)
+        for span in spans
+        if span.end_line > span.line
+    ]

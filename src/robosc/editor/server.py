@@ -17,7 +17,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from robosc import __version__
 from robosc.editor.diagnostics import by_file
-from robosc.editor.outline import outline
+from robosc.editor.outline import folds, outline
 
 DEBOUNCE_SECONDS = 0.1
 log = logging.getLogger(__name__)
@@ -102,6 +102,19 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             return outline(parsed.syntax, document.source.splitlines())
         except Exception:
             log.exception("outline failed")
+            return None
+
+    @server.feature(lsp.TEXT_DOCUMENT_FOLDING_RANGE)
+    def folding(ls: RoboscServer, params: lsp.FoldingRangeParams) -> list[lsp.FoldingRange] | None:
+        from robosc.language.parser import parse_source
+        from robosc.language.source import SourceFile
+
+        try:
+            document = ls.workspace.get_text_document(params.text_document.uri)
+            parsed = parse_source(SourceFile(ls.path_of(document.uri), document.source))
+            return folds(parsed.syntax) if parsed.syntax is not None else None
+        except Exception:
+            log.exception("folding failed")
             return None
 
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)

@@ -5,14 +5,12 @@ paces the steps at ``speed`` times real time.
 
 from __future__ import annotations
 
-import json
 import queue
-import subprocess
-import threading
 import time
 from collections.abc import Callable
-from typing import IO, Any
+from typing import Any
 
+from robosc.jsonlines import LinePeer, PeerGone
 from robosc.sim.local import apply_command, scan_message
 from robosc.sim.simulation import Message, Simulation
 
@@ -21,41 +19,17 @@ class SessionError(Exception):
     """The simulator's node or the controllers did not come up."""
 
 
-class Bridge:
-    """The simulator's node as a subprocess: lines to it, lines from it on a queue."""
-
-    def __init__(self, process: subprocess.Popen[bytes]) -> None:
-        assert process.stdin is not None and process.stdout is not None
-        self.process = process
-        self._in: IO[bytes] = process.stdin
-        self.lines: queue.Queue[dict[str, Any] | None] = queue.Queue()
-        threading.Thread(target=self._read, args=(process.stdout,), daemon=True).start()
-
-    def _read(self, stream: IO[bytes]) -> None:
-        for raw in stream:
-            try:
-                message = json.loads(raw)
-            except ValueError:
-                continue
-            if isinstance(message, dict):
-                message["received"] = time.perf_counter()  # for traces: when it came, not when it was used
-                self.lines.put(message)
-        self.lines.put(None)  # the node ended
+class Bridge(LinePeer):
+    """The simulator's node as a subprocess."""
 
     def send(self, op: str, **fields: Any) -> None:
-        fields["op"] = op
         try:
-            self._in.write((json.dumps(fields) + "\n").encode())
-            self._in.flush()
-        except (BrokenPipeError, ValueError, OSError):
+            super().send(op, **fields)
+        except PeerGone:
             raise SessionError("the simulator's node ended") from None
 
     def close(self) -> None:
-        try:
-            self.send("quit")
-            self._in.close()
-        except SessionError:
-            pass
+        self.quit()
 
 
 def setup(sim: Simulation, bridge: Bridge, robots: list[str], roles: list[str]) -> None:

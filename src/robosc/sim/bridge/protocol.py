@@ -20,7 +20,7 @@ import json
 import math
 import sys
 import threading
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List
 
 # the roles whose topics the node publishes; the others it subscribes to
 PUBLISHED = ("scan", "rotate_done", "line_correction", "line_lost", "stop", "continue")
@@ -95,10 +95,46 @@ def peer_counts(robots: List[str], connected: Callable[[int, str], bool], roles:
     return [[role for role in roles if connected(i, role)] for i in range(len(robots))]
 
 
-def setup_line() -> Optional[Dict[str, Any]]:
-    """The first line: the setup."""
+class Setup(object):
+    """The first line: the robots' names, the world's topics by role, the roles the model
+    uses, and the LaserScan's fields but its ranges."""
+
+    def __init__(self, message: Dict[str, Any]) -> None:
+        self.robots = [str(r) for r in message["robots"]]  # type: List[str]
+        self.topics = dict(message["topics"])  # type: Dict[str, str]
+        self.roles = [str(r) for r in message["roles"]]  # type: List[str]
+        self.scan = dict(message["scan"])  # type: Dict[str, Any]
+
+
+def read_setup() -> Setup:
+    """The setup line from the simulation; the node ends without one."""
     line = sys.stdin.readline()
-    if not line:
-        return None
-    message = json.loads(line)
-    return message if message.get("op") == "setup" else None
+    message = json.loads(line) if line.strip() else None
+    if not isinstance(message, dict) or message.get("op") != "setup":
+        sys.exit("robosc sim bridge: no setup line")
+    return Setup(message)
+
+
+def published_kinds() -> Dict[str, Any]:
+    """The message type of each role the node publishes (the same in ROS 1 and ROS 2)."""
+    from sensor_msgs.msg import LaserScan
+    from std_msgs.msg import Empty, Float32
+
+    kinds = {"scan": LaserScan, "rotate_done": Empty, "line_correction": Float32, "line_lost": Empty}
+    kinds.update({"stop": Empty, "continue": Empty})
+    return kinds
+
+
+def message_for(kinds: Dict[str, Any], setup: Setup, message: Dict[str, Any], stamp: Callable[[Any], None]) -> Any:
+    """The ROS message of a ``publish`` line; ``stamp(header)`` sets a scan's time."""
+    role = message["role"]
+    out = kinds[role]()
+    if role == "scan":
+        stamp(out.header)
+        out.header.frame_id = "%s/base_scan" % setup.robots[int(message["robot"])]
+        for key, value in setup.scan.items():
+            setattr(out, key, float(value))
+        out.ranges = [float(r) for r in message["value"]]
+    elif role == "line_correction":
+        out.data = float(message["value"])
+    return out

@@ -1,33 +1,35 @@
 """The simulator's ROS 1 node (rospy): run as ``python3 -m robosc_sim_bridge.ros1``."""
 
-import sys
 import threading
 from typing import Any, Dict, List
 
-from .protocol import BUTTON, PUBLISHED, SUBSCRIBED, Channel, peer_counts, setup_line, topic
+from .protocol import (
+    BUTTON,
+    PUBLISHED,
+    SUBSCRIBED,
+    Channel,
+    message_for,
+    peer_counts,
+    published_kinds,
+    read_setup,
+    topic,
+)
 
 
 def main() -> None:
     import rospy
     from geometry_msgs.msg import Twist
     from rosgraph_msgs.msg import Clock
-    from sensor_msgs.msg import LaserScan
-    from std_msgs.msg import Empty, Float32, Int16, String
+    from std_msgs.msg import Int16, String
     from std_srvs.srv import SetBool, SetBoolResponse
 
-    setup = setup_line()
-    if setup is None:
-        sys.exit("robosc sim bridge: no setup line")
-    robots: List[str] = setup["robots"]
-    topics: Dict[str, str] = setup["topics"]
-    roles: List[str] = setup["roles"]
-    scan_fields: Dict[str, Any] = setup["scan"]
+    setup = read_setup()
+    robots, topics, roles = setup.robots, setup.topics, setup.roles
     # every node started after this one runs on the simulation's clock
     rospy.set_param("/use_sim_time", True)
     rospy.init_node("robosc_sim", disable_signals=True)
     channel = Channel()
-    kinds = {"scan": LaserScan, "rotate_done": Empty, "line_correction": Float32, "line_lost": Empty}
-    kinds.update({"stop": Empty, "continue": Empty})
+    kinds = published_kinds()
     clock = rospy.Publisher("/clock", Clock, queue_size=10)
     publishers: List[Dict[str, Any]] = []
     subscriptions: List[Dict[str, Any]] = []
@@ -57,6 +59,9 @@ def main() -> None:
 
     now = [0.0]
 
+    def stamp(header: Any) -> None:
+        header.stamp = rospy.Time.from_sec(now[0])
+
     def handle(message: Dict[str, Any]) -> None:
         op = message.get("op")
         if op == "clock":
@@ -67,15 +72,7 @@ def main() -> None:
             publisher = publishers[i].get(role)
             if publisher is None:
                 return
-            out = kinds[role]()
-            if role == "scan":
-                out.header.stamp = rospy.Time.from_sec(now[0])
-                out.header.frame_id = "%s/base_scan" % robots[i]
-                for key, value in scan_fields.items():
-                    setattr(out, key, float(value))
-                out.ranges = [float(r) for r in message["value"]]
-            elif role == "line_correction":
-                out.data = float(message["value"])
+            out = message_for(kinds, setup, message, stamp)
             publisher.publish(out)
 
     def connected(i: int, role: str) -> bool:

@@ -4,7 +4,17 @@ import sys
 import threading
 from typing import Any, Dict, List
 
-from .protocol import BUTTON, PUBLISHED, SUBSCRIBED, Channel, peer_counts, setup_line, topic
+from .protocol import (
+    BUTTON,
+    PUBLISHED,
+    SUBSCRIBED,
+    Channel,
+    message_for,
+    peer_counts,
+    published_kinds,
+    read_setup,
+    topic,
+)
 
 
 def main() -> None:
@@ -14,22 +24,15 @@ def main() -> None:
     from rclpy.qos import QoSProfile, ReliabilityPolicy
     from rclpy.utilities import ok, try_shutdown
     from rosgraph_msgs.msg import Clock
-    from sensor_msgs.msg import LaserScan
-    from std_msgs.msg import Empty, Float32, Int16, String
+    from std_msgs.msg import Int16, String
     from std_srvs.srv import SetBool
 
-    setup = setup_line()
-    if setup is None:
-        sys.exit("robosc sim bridge: no setup line")
-    robots: List[str] = setup["robots"]
-    topics: Dict[str, str] = setup["topics"]
-    roles: List[str] = setup["roles"]
-    scan_fields: Dict[str, Any] = setup["scan"]
+    setup = read_setup()
+    robots, topics, roles = setup.robots, setup.topics, setup.roles
     rclpy.init(args=sys.argv)
     node = rclpy.create_node("robosc_sim")
     channel = Channel()
-    kinds = {"scan": LaserScan, "rotate_done": Empty, "line_correction": Float32, "line_lost": Empty}
-    kinds.update({"stop": Empty, "continue": Empty})
+    kinds = published_kinds()
     reliable = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
     clock = node.create_publisher(Clock, "/clock", 10)
     publishers: List[Dict[str, Any]] = []
@@ -65,9 +68,9 @@ def main() -> None:
 
     now = [0.0]
 
-    def stamp(message: Any) -> None:
-        message.header.stamp.sec = int(now[0])
-        message.header.stamp.nanosec = int(round((now[0] - int(now[0])) * 1e9)) % 1000000000
+    def stamp(header: Any) -> None:
+        header.stamp.sec = int(now[0])
+        header.stamp.nanosec = int(round((now[0] - int(now[0])) * 1e9)) % 1000000000
 
     def handle(message: Dict[str, Any]) -> None:
         op = message.get("op")
@@ -82,16 +85,7 @@ def main() -> None:
             publisher = publishers[i].get(role)
             if publisher is None:
                 return
-            kind = kinds[role]
-            out = kind()
-            if role == "scan":
-                stamp(out)
-                out.header.frame_id = "%s/base_scan" % robots[i]
-                for key, value in scan_fields.items():
-                    setattr(out, key, float(value))
-                out.ranges = [float(r) for r in message["value"]]
-            elif role == "line_correction":
-                out.data = float(message["value"])
+            out = message_for(kinds, setup, message, stamp)
             publisher.publish(out)
 
     def connected(i: int, role: str) -> bool:
