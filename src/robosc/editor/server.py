@@ -54,6 +54,15 @@ class RoboscServer(LanguageServer):
             self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=stale, diagnostics=[]))
         self.published[uri] = published
 
+    def syntax(self, uri: str) -> tuple[Any, list[str]]:
+        """The open document's syntax tree (None when it does not parse) and its lines."""
+        from robosc.language.parser import parse_source
+        from robosc.language.source import SourceFile
+
+        document = self.workspace.get_text_document(uri)
+        parsed = parse_source(SourceFile(self.path_of(uri), document.source))
+        return parsed.syntax, document.source.splitlines()
+
     def schedule(self, uri: str) -> None:
         """Check ``uri`` once typing pauses for DEBOUNCE_SECONDS."""
         old = self.pending.pop(uri, None)
@@ -91,28 +100,18 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
 
     @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
     def symbols(ls: RoboscServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol] | None:
-        from robosc.language.parser import parse_source
-        from robosc.language.source import SourceFile
-
         try:
-            document = ls.workspace.get_text_document(params.text_document.uri)
-            parsed = parse_source(SourceFile(ls.path_of(document.uri), document.source))
-            if parsed.syntax is None:
-                return None
-            return outline(parsed.syntax, document.source.splitlines())
+            tree, lines = ls.syntax(params.text_document.uri)
+            return outline(tree, lines) if tree is not None else None
         except Exception:
             log.exception("outline failed")
             return None
 
     @server.feature(lsp.TEXT_DOCUMENT_FOLDING_RANGE)
     def folding(ls: RoboscServer, params: lsp.FoldingRangeParams) -> list[lsp.FoldingRange] | None:
-        from robosc.language.parser import parse_source
-        from robosc.language.source import SourceFile
-
         try:
-            document = ls.workspace.get_text_document(params.text_document.uri)
-            parsed = parse_source(SourceFile(ls.path_of(document.uri), document.source))
-            return folds(parsed.syntax) if parsed.syntax is not None else None
+            tree, _ = ls.syntax(params.text_document.uri)
+            return folds(tree) if tree is not None else None
         except Exception:
             log.exception("folding failed")
             return None

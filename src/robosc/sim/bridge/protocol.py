@@ -20,7 +20,7 @@ import json
 import math
 import sys
 import threading
-from typing import Any, Callable, Dict, List
+from typing import Any, Callable, Dict, List, Tuple
 
 # the roles whose topics the node publishes; the others it subscribes to
 PUBLISHED = ("scan", "rotate_done", "line_correction", "line_lost", "stop", "continue")
@@ -31,6 +31,12 @@ BUTTON = "emergency_stop_button"  # the service (std_srvs/SetBool) that presses 
 def topic(robot: str, name: str) -> str:
     """A world topic name inside a robot's namespace: ("robot1", "/scan") -> "/robot1/scan"."""
     return "/%s/%s" % (robot, name.lstrip("/"))
+
+
+def sec_nanosec(t: float) -> Tuple[int, int]:
+    """Seconds as a ROS 2 time's (sec, nanosec)."""
+    nanoseconds = int(round(t * 1e9))
+    return nanoseconds // 1000000000, nanoseconds % 1000000000
 
 
 def finite(value: Any) -> float:
@@ -138,3 +144,71 @@ def message_for(kinds: Dict[str, Any], setup: Setup, message: Dict[str, Any], st
     elif role == "line_correction":
         out.data = float(message["value"])
     return out
+
+
+class Wiring(object):
+    """Each robot's publishers and subscriptions, made by the middleware's functions:
+    ``publisher(name, kind)``, ``subscriber(name, kind, callback)`` and ``button(name,
+    press)``, where ``press(pressed)`` is what the button service does."""
+
+    def __init__(
+        self,
+        setup: Setup,
+        channel: Channel,
+        publisher: Callable[[str, Any], Any],
+        subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
+        button: Callable[[str, Callable[[bool], None]], Any],
+    ) -> None:
+        from geometry_msgs.msg import Twist
+        from std_msgs.msg import Int16, String
+
+        self.setup = setup
+        self.kinds = published_kinds()
+        self.publishers = []  # type: List[Dict[str, Any]]
+        self.subscriptions = []  # type: List[Dict[str, Any]]
+        self.keep = []  # type: List[Any]
+        for i, robot in enumerate(setup.robots):
+            names = dict((role, topic(robot, setup.topics[role])) for role in setup.roles)
+            self.publishers.append(
+                dict((role, publisher(names[role], self.kinds[role])) for role in setup.roles if role in PUBLISHED)
+            )
+            subs = {}  # type: Dict[str, Any]
+            for role in setup.roles:
+                if role == "cmd_vel":
+                    subs[role] = subscriber(names[role], Twist, channel.on_twist(i))
+                elif role in SUBSCRIBED:
+                    subs[role] = subscriber(names[role], Int16, channel.on_number(i, role))
+            self.subscriptions.append(subs)
+            self.keep.append(subscriber(topic(robot, "blocked"), String, channel.on_refused(i)))
+            self.keep.append(button(topic(robot, BUTTON), self._press(channel, i)))
+
+    @staticmethod
+    def _press(channel: Channel, i: int) -> Callable[[bool], None]:
+        return lambda pressed: channel.send("press", robot=i, pressed=pressed)
+
+    def handler(self, clock: Callable[[float], None], stamp: Callable[[Any, float], None]) -> Callable[[Dict[str, Any]], None]:
+        """What the node does with a line: ``clock(t)`` publishes /clock, ``stamp(header, t)``
+        sets a header's time."""
+        now = [0.0]
+
+        def handle(message: Dict[str, Any]) -> None:
+            op = message.get("op")
+            if op == "clock":
+                now[0] = float(message["t"])
+                clock(now[0])
+            elif op == "publish":
+                publisher = self.publishers[int(message["robot"])].get(message["role"])
+                if publisher is not None:
+                    publisher.publish(message_for(self.kinds, self.setup, message, lambda h: stamp(h, now[0])))
+
+        return handle
+
+    def peers(self, publisher_count: Callable[[Any], int], subscriber_count: Callable[[Any], int]) -> List[List[str]]:
+        """For each robot, the roles whose topic has the controller on the other end."""
+
+        def connected(i: int, role: str) -> bool:
+            if role in self.publishers[i]:
+                return publisher_count(self.publishers[i][role]) > 0
+            return subscriber_count(self.subscriptions[i][role]) > 0
+
+        return peer_counts(self.setup.robots, connected, self.setup.roles)
