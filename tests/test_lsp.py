@@ -114,6 +114,38 @@ async def test_outline_of_a_model(client: LanguageClient) -> None:
 
 
 @pytest.mark.asyncio
+async def test_hover_shows_what_synthesis_added_and_why(client: LanguageClient) -> None:
+    path = EXAMPLES / "shelf_picker.rscd"
+    uri = open_document(client, path)
+    assert await diagnostics_of(client, uri) == []
+    lines = path.read_text().splitlines()
+    line = next(i for i, text in enumerate(lines) if text.strip().startswith("requirement pick needs"))
+    at = lsp.Position(line=line, character=lines[line].index("pick needs") + 1)
+    end = asyncio.get_running_loop().time() + 20
+    while True:  # synthesis runs in the background; until then the hover says so
+        hover = await client.text_document_hover_async(
+            lsp.HoverParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=at)
+        )
+        assert hover is not None
+        text = hover.contents.value  # type: ignore[union-attr]
+        if "running" not in text or asyncio.get_running_loop().time() > end:
+            break
+        await asyncio.sleep(0.1)
+    assert "**action `pick`** of `Arm`" in text
+    assert "- `pick.c_trigger` needs `Base.at_shelf`; **synthesis added** `Tray.empty or Tray.one`" in text
+    assert "so: the system would block" in text  # the explanation, as robosc synthesize gives it
+    assert "- `pick.c_reset` needs `true`" in text  # no condition added there
+    state = next(i for i, text in enumerate(lines) if "Tray.two" in text)
+    hover = await client.text_document_hover_async(
+        lsp.HoverParams(
+            text_document=lsp.TextDocumentIdentifier(uri=uri),
+            position=lsp.Position(line=state, character=lines[state].index("Tray.two") + 6),
+        )
+    )
+    assert hover is not None and "**state `Tray.two`**" in hover.contents.value  # type: ignore[union-attr]
+
+
+@pytest.mark.asyncio
 async def test_folding_ranges(client: LanguageClient) -> None:
     uri = open_document(client, EXAMPLES / "maze_solver.rscd")
     ranges = await client.text_document_folding_range_async(

@@ -14,7 +14,7 @@ from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
 from robosc.synthesis.result import Explanation, Restriction
-from robosc.synthesis.warnings import synthesis_warnings
+from robosc.synthesis.warnings import synthesis_warnings, why_lines
 
 
 def _explanation(explanation: Explanation) -> dict[str, Any]:
@@ -58,23 +58,6 @@ def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -
         "explanation": None if explanation is None else _explanation(explanation),
         "warnings": json.loads(to_json(warnings or [])),
     }
-
-
-def why_lines(restriction: Restriction) -> list[str]:
-    """The explanation of one added condition, as indented lines."""
-    name = restriction.event.name
-    lines = [f"{name}{' (never allowed)' if restriction.never else ''}:"]
-    if restriction.path:
-        lines.append("    a shortest run to a state where synthesis disables it:")
-        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.path, 1)]
-    else:
-        lines.append("    synthesis disables it in the initial state")
-    lines.append(f"    there [{restriction.state}], '{name}' would lead to [{restriction.after}]")
-    if restriction.consequence.path:
-        lines.append("    from there, events the supervisor cannot prevent:")
-        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.consequence.path, 1)]
-    lines.append(f"    so: {restriction.consequence.reason}")
-    return lines
 
 
 def print_warnings(warnings: list[Diagnostic]) -> None:

@@ -29,6 +29,7 @@ class RoboscServer(LanguageServer):
         self.search_paths = [Path(p) for p in search_paths]
         self.pending: dict[str, asyncio.TimerHandle] = {}
         self.published: dict[str, set[str]] = {}  # document uri -> uris it published diagnostics for
+        self.checked: dict[str, list[Any]] = {}  # uri -> [checked model, synthesis result or None]
 
     def path_of(self, uri: str) -> str:
         return to_fs_path(uri) or uri
@@ -53,6 +54,27 @@ class RoboscServer(LanguageServer):
         for stale in self.published.get(uri, set()) - published:
             self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=stale, diagnostics=[]))
         self.published[uri] = published
+        if result.model is not None and result.model.kind == "robot":
+            self.synthesize(uri, result.model)
+
+    def synthesize(self, uri: str, model: Any) -> None:
+        """Synthesis of the checked model on a thread of its own: typing goes on meanwhile;
+        hover shows the result once it is there (and only for the text it was made from)."""
+        entry: list[Any] = [model, None]
+        self.checked[uri] = entry
+
+        def run() -> None:
+            from robosc.api import synthesize_model
+
+            try:
+                result = synthesize_model(model)
+            except Exception:
+                log.exception("synthesis of %s failed", uri)
+                return
+            if self.checked.get(uri) is entry:
+                entry[1] = result
+
+        asyncio.get_event_loop().run_in_executor(None, run)
 
     def syntax(self, uri: str) -> tuple[Any, list[str]]:
         """The open document's syntax tree (None when it does not parse) and its lines."""
@@ -95,6 +117,7 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
         handle = ls.pending.pop(uri, None)
         if handle is not None:
             handle.cancel()
+        ls.checked.pop(uri, None)
         for target in ls.published.pop(uri, {uri}):
             ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=[]))
 
@@ -114,6 +137,26 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             return folds(tree) if tree is not None else None
         except Exception:
             log.exception("folding failed")
+            return None
+
+    @server.feature(lsp.TEXT_DOCUMENT_HOVER)
+    def hover(ls: RoboscServer, params: lsp.HoverParams) -> lsp.Hover | None:
+        from robosc.editor.hover import describe, word_at
+
+        try:
+            entry = ls.checked.get(params.text_document.uri)
+            if entry is None:
+                return None
+            document = ls.workspace.get_text_document(params.text_document.uri)
+            lines = document.source.splitlines()
+            line = lines[params.position.line] if params.position.line < len(lines) else ""
+            name = word_at(line, params.position.character)
+            text = describe(entry[0], entry[1], name) if name else None
+            if text is None:
+                return None
+            return lsp.Hover(contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text))
+        except Exception:
+            log.exception("hover failed")
             return None
 
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)

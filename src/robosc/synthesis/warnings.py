@@ -24,6 +24,23 @@ def event_span(event: Event) -> Span | None:
     return None
 
 
+def why_lines(restriction: Restriction) -> list[str]:
+    """The explanation of one added condition, as indented lines."""
+    name = restriction.event.name
+    lines = [f"{name}{' (never allowed)' if restriction.never else ''}:"]
+    if restriction.path:
+        lines.append("    a shortest run to a state where synthesis disables it:")
+        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.path, 1)]
+    else:
+        lines.append("    synthesis disables it in the initial state")
+    lines.append(f"    there [{restriction.state}], '{name}' would lead to [{restriction.after}]")
+    if restriction.consequence.path:
+        lines.append("    from there, events the supervisor cannot prevent:")
+        lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.consequence.path, 1)]
+    lines.append(f"    so: {restriction.consequence.reason}")
+    return lines
+
+
 def consequence(restriction: Restriction) -> str:
     """What goes wrong after the event, in one sentence."""
     steps = [step.event.name for step in restriction.consequence.path]
