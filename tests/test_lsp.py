@@ -145,6 +145,74 @@ async def test_hover_shows_what_synthesis_added_and_why(client: LanguageClient) 
     assert hover is not None and "**state `Tray.two`**" in hover.contents.value  # type: ignore[union-attr]
 
 
+def where(path: Path, text: str, nth: int = 0, offset: int = 0) -> lsp.Position:
+    """The position of the ``nth`` occurrence of ``text`` in the file (plus ``offset`` characters)."""
+    lines = path.read_text().splitlines()
+    found = [(i, line.index(text)) for i, line in enumerate(lines) if text in line]
+    line, column = found[nth]
+    return lsp.Position(line=line, character=column + offset)
+
+
+@pytest.mark.asyncio
+async def test_definition_and_references(client: LanguageClient) -> None:
+    path = EXAMPLES / "maze_solver.rscd"
+    uri = open_document(client, path)
+    await diagnostics_of(client, uri)
+    doc = lsp.TextDocumentIdentifier(uri=uri)
+    # Platform.ready in a requirement -> the state 'ready' of Platform
+    use = where(path, "Platform.ready", 0, len("Platform.") + 1)
+    found = await client.text_document_definition_async(lsp.DefinitionParams(text_document=doc, position=use))
+    assert isinstance(found, lsp.Location) and found.uri == uri
+    assert found.range.start == where(path, "initial marked state ready")
+    # 'goto turning' -> the state turning
+    found = await client.text_document_definition_async(
+        lsp.DefinitionParams(text_document=doc, position=where(path, "goto turning", 0, len("goto t")))
+    )
+    assert isinstance(found, lsp.Location) and found.range.start == where(path, "state turning")
+    # the data type of a message -> its declaration
+    found = await client.text_document_definition_async(
+        lsp.DefinitionParams(text_document=doc, position=where(path, "type: WallFront", 0, len("type: W")))
+    )
+    assert isinstance(found, lsp.Location) and found.range.start == where(path, "enum WallFront from LaserScan")
+    # every use of Platform.ready: three requirements, 'goto ready' and its declaration
+    uses = await client.text_document_references_async(
+        lsp.ReferenceParams(
+            text_document=doc, position=use, context=lsp.ReferenceContext(include_declaration=True)
+        )
+    )
+    assert uses is not None
+    starts = sorted((u.range.start.line, u.range.start.character) for u in uses)
+    expected = sorted(
+        [(where(path, "initial marked state ready").line, where(path, "initial marked state ready").character)]
+        + [(p.line, p.character + len("Platform.")) for p in (where(path, "Platform.ready", n) for n in range(3))]
+        + [(where(path, "goto ready").line, where(path, "goto ready").character + len("goto "))]
+    )
+    assert starts == expected
+    # from the declaration too, without it
+    uses = await client.text_document_references_async(
+        lsp.ReferenceParams(
+            text_document=doc,
+            position=where(path, "initial marked state ready", 0, len("initial marked state r")),
+            context=lsp.ReferenceContext(include_declaration=False),
+        )
+    )
+    assert uses is not None and len(uses) == 4
+
+
+@pytest.mark.asyncio
+async def test_definition_in_a_library(client: LanguageClient) -> None:
+    path = EXAMPLES / "line_follower.rscd"
+    uri = open_document(client, path)
+    await diagnostics_of(client, uri)
+    use = where(path, "EmergencyStop.stopped", 0, len("EmergencyStop.") + 1)
+    found = await client.text_document_definition_async(
+        lsp.DefinitionParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=use)
+    )
+    library = EXAMPLES / "emergency_stop.rscd"
+    assert isinstance(found, lsp.Location) and found.uri == library.as_uri()
+    assert "stopped" in library.read_text().splitlines()[found.range.start.line]
+
+
 @pytest.mark.asyncio
 async def test_folding_ranges(client: LanguageClient) -> None:
     uri = open_document(client, EXAMPLES / "maze_solver.rscd")

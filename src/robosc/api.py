@@ -58,6 +58,9 @@ class CheckResult:
     model: Model | None
     diagnostics: tuple[Diagnostic, ...]
     sources: dict[str, SourceFile] = field(default_factory=dict, repr=False)
+    # each name that resolved and the model object it names (with a span): what editors
+    # need for definitions and references
+    references: tuple[tuple[Any, Any], ...] = field(default=(), compare=False, repr=False)
 
     @property
     def ok(self) -> bool:
@@ -95,7 +98,7 @@ def _check(source: SourceFile, search_paths: Sequence[str | Path]) -> CheckResul
     diagnostics += [d for d in run_checks(resolved.model) if d not in diagnostics]
     diagnostics.sort(key=sort_key)
     ok = not any(d.is_error for d in diagnostics)
-    return CheckResult(resolved.model if ok else None, tuple(diagnostics), sources)
+    return CheckResult(resolved.model if ok else None, tuple(diagnostics), sources, resolved.references)
 
 
 def check_text(text: str, path: str = "<text>", search_paths: Sequence[str | Path] = ()) -> CheckResult:

@@ -17,6 +17,7 @@ from pygls.uris import from_fs_path, to_fs_path
 
 from robosc import __version__
 from robosc.editor.diagnostics import by_file
+from robosc.editor.navigation import Index
 from robosc.editor.outline import folds, outline
 
 DEBOUNCE_SECONDS = 0.1
@@ -30,6 +31,7 @@ class RoboscServer(LanguageServer):
         self.pending: dict[str, asyncio.TimerHandle] = {}
         self.published: dict[str, set[str]] = {}  # document uri -> uris it published diagnostics for
         self.checked: dict[str, list[Any]] = {}  # uri -> [checked model, synthesis result or None]
+        self.indexes: dict[str, Index] = {}  # uri -> the names resolved by its last check
 
     def path_of(self, uri: str) -> str:
         return to_fs_path(uri) or uri
@@ -43,6 +45,7 @@ class RoboscServer(LanguageServer):
             document = self.workspace.get_text_document(uri)
             result = check_text(document.source, self.path_of(uri), self.search_paths)
             found = by_file(result)
+            self.indexes[uri] = Index(self.path_of(uri), result.references, result.sources)
         except Exception:  # never end the server on a model
             log.exception("checking %s failed", uri)
             return
@@ -118,6 +121,7 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
         if handle is not None:
             handle.cancel()
         ls.checked.pop(uri, None)
+        ls.indexes.pop(uri, None)
         for target in ls.published.pop(uri, {uri}):
             ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=[]))
 
@@ -157,6 +161,24 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             return lsp.Hover(contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text))
         except Exception:
             log.exception("hover failed")
+            return None
+
+    @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
+    def definition(ls: RoboscServer, params: lsp.DefinitionParams) -> lsp.Location | None:
+        index = ls.indexes.get(params.text_document.uri)
+        try:
+            return index.definition(params.position) if index is not None else None
+        except Exception:
+            log.exception("definition failed")
+            return None
+
+    @server.feature(lsp.TEXT_DOCUMENT_REFERENCES)
+    def references(ls: RoboscServer, params: lsp.ReferenceParams) -> list[lsp.Location] | None:
+        index = ls.indexes.get(params.text_document.uri)
+        try:
+            return index.uses(params.position, params.context.include_declaration) if index is not None else None
+        except Exception:
+            log.exception("references failed")
             return None
 
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)

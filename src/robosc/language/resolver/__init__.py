@@ -7,7 +7,7 @@ provide statements, which may name anything declared before.
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Any, Protocol
 
 from robosc.language import model as m
 from robosc.language import syntax as s
@@ -20,7 +20,7 @@ from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.statements import StatementResolver
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
-from robosc.record import record
+from robosc.record import field, record
 
 __all__ = ["FileScope", "LibraryProvider", "LibraryUnit", "Reporter", "ResolveResult", "resolve", "scope_of"]
 
@@ -62,6 +62,8 @@ class LibraryProvider(Protocol):
 class ResolveResult:
     model: m.Model
     diagnostics: tuple[Diagnostic, ...]
+    # each name that resolved and the model object it names (for editors: definition, references)
+    references: tuple[tuple[Span, Any], ...] = field(default=(), compare=False, repr=False)
 
 
 def scope_of(file: s.FileSyntax, reporter: Reporter) -> FileScope:
@@ -238,4 +240,4 @@ def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> Resolv
         provides,
     )
     unique = tuple(dict.fromkeys(resolver.reporter.diagnostics))
-    return ResolveResult(model, unique)
+    return ResolveResult(model, unique, tuple(resolver.reporter.references))

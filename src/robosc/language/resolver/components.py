@@ -182,6 +182,8 @@ class BehaviourResolver:
         state = self.tables.states.get(name.text)
         if state is None:
             self.reporter.unknown(name.span, "state", name.text, self.tables.states, f" in '{self.tables.name}'")
+        else:
+            self.reporter.refer(name.span, state)
         return state
 
     def _communication(self, name: s.Name) -> m.Communication | None:
@@ -189,6 +191,8 @@ class BehaviourResolver:
         found = own or self.communications(name.text)
         if found is None:
             self.reporter.unknown(name.span, "communication", name.text, self.communication_names())
+        else:
+            self.reporter.refer(name.span, found)
         return found
 
     def _assignment(self, syntax: s.AssignmentSyntax, context: ExprContext) -> m.Assignment:

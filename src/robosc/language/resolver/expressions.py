@@ -84,6 +84,7 @@ class ExpressionResolver:
         steps = syntax.steps
         own = context.component
         if own is not None and name in own.variables:
+            self.reporter.refer(syntax.head.span, own.variables[name])
             return self._variable(own.variables[name], steps, syntax.span)
         component = self.components(name)
         if component is not None:
@@ -93,6 +94,7 @@ class ExpressionResolver:
             if steps:
                 self.reporter.error(steps[0].span, f"enum value '{name}' has no properties", Code.TYPES)
                 return m.Invalid(syntax.span)
+            self.reporter.refer(syntax.head.span, value)
             return m.EnumLiteral(enum, value, syntax.span)
         candidates = list(self.component_names()) + list(self.enum_values)
         if own is not None:
@@ -146,8 +148,10 @@ class ExpressionResolver:
             if rest:
                 self.reporter.error(rest[0].span, f"state '{name}.{member.text}' has no properties", Code.TYPES)
                 return m.Invalid(syntax.span)
+            self.reporter.refer(member.span, component.states[member.text])
             return m.StateRef(component.states[member.text], syntax.span)
         if member.text in component.variables:
+            self.reporter.refer(member.span, component.variables[member.text])
             return self._variable(component.variables[member.text], rest, syntax.span)
         self.reporter.unknown(
             member.span,
@@ -189,6 +193,7 @@ class ExpressionResolver:
                     f" in {data_type.name}",
                 )
                 return tuple(resolved), m.ERROR
+            self.reporter.refer(step.name.span, prop)
             resolved.append(m.FieldStep(prop))
             data_type = prop.type
         return tuple(resolved), data_type

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
+from typing import Any
 
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, did_you_mean, error
@@ -12,6 +13,11 @@ from robosc.language.source import Span
 class Reporter:
     def __init__(self) -> None:
         self.diagnostics: list[Diagnostic] = []
+        # each name that resolved, and what it names (a model object with a span): for editors
+        self.references: list[tuple[Span, Any]] = []
+
+    def refer(self, span: Span, target: Any) -> None:
+        self.references.append((span, target))
 
     def error(self, span: Span, message: str, code: Code, hint: str | None = None) -> None:
         self.diagnostics.append(error(span, message, code, hint))

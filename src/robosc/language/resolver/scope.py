@@ -55,7 +55,9 @@ class FileScope:
         if syntax is None:
             self.reporter.unknown(name.span, "interface", name.text, self.interface_syntax)
             return None
-        return self.interface(syntax)
+        found = self.interface(syntax)
+        self.reporter.refer(name.span, found)
+        return found
 
     # -- data types ---------------------------------------------------------------
     def data_type(self, syntax: s.TypeSyntax) -> m.DataType:
@@ -74,7 +76,9 @@ class FileScope:
         if named is None:
             self.reporter.unknown(syntax.name.span, "data type", syntax.name.text, self.type_syntax)
             return m.ERROR
-        return self._named_type(named)
+        built = self._named_type(named)
+        self.reporter.refer(syntax.name.span, built)
+        return built
 
     def _named_type(self, syntax: NamedTypeSyntax) -> m.ObjectType | m.EnumType | m.ErrorType:
         key = id(syntax)

@@ -31,6 +31,8 @@ class StatementResolver:
         found = self.communications(name.text)
         if found is None:
             self.reporter.unknown(name.span, "communication", name.text, self.communication_names())
+        else:
+            self.reporter.refer(name.span, found)
         return found
 
     def requirement(self, syntax: s.RequirementSyntax) -> m.Requirement:
