@@ -214,6 +214,46 @@ async def test_definition_in_a_library(client: LanguageClient) -> None:
 
 
 @pytest.mark.asyncio
+async def test_completion_in_context(client: LanguageClient, tmp_path: Path) -> None:
+    text = (EXAMPLES / "maze_solver.rscd").read_text()
+    path = tmp_path / "maze_solver.rscd"
+    uri = open_document(client, path, text)
+    assert await diagnostics_of(client, uri) == []
+
+    async def labels(typed_after: str, anchor: str) -> list[str]:
+        """Type ``typed_after`` right after ``anchor`` (the model no longer checks) and complete there."""
+        at = text.index(anchor) + len(anchor)
+        edited = text[:at] + typed_after + text[at:]
+        change(client, uri, edited, 2)
+        await diagnostics_of(client, uri)
+        before = edited[: at + len(typed_after)]
+        line = before.count("\n")
+        character = len(before.rsplit("\n", 1)[-1])
+        found = await client.text_document_completion_async(
+            lsp.CompletionParams(
+                text_document=lsp.TextDocumentIdentifier(uri=uri), position=lsp.Position(line=line, character=character)
+            )
+        )
+        assert isinstance(found, lsp.CompletionList)
+        return [item.label for item in found.items]
+
+    # the states of the component being written, after goto
+    assert await labels("\n                on request to turn_left goto ", "state turning {") == ["ready", "turning"]
+    # its own communications after 'on response from'
+    got = await labels("\n                on response from ", "state turning {")
+    assert got == ["movement", "turn_left", "turn_right", "rotate_done"]
+    # a component's states and variables after 'Distance.'
+    got = await labels(" and Distance.", "requirement turn_left needs Platform.ready")
+    assert got == ["sensing", "front", "right", "diag_right"]
+    # enum values after '='
+    got = await labels(" and Distance.front = ", "requirement turn_left needs Platform.ready")
+    assert {"wall_front", "no_wall_front", "wall_right"} <= set(got) and "ready" not in got
+    # elsewhere: keywords and names in scope
+    got = await labels("\n    ", "provide movement with { linear: { x: 0.3 } }")
+    assert {"requirement", "component", "Distance", "Platform", "movement", "WallFront"} <= set(got)
+
+
+@pytest.mark.asyncio
 async def test_folding_ranges(client: LanguageClient) -> None:
     uri = open_document(client, EXAMPLES / "maze_solver.rscd")
     ranges = await client.text_document_folding_range_async(

@@ -181,6 +181,21 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             log.exception("references failed")
             return None
 
+    @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[".", " "]))
+    def completion(ls: RoboscServer, params: lsp.CompletionParams) -> lsp.CompletionList | None:
+        from robosc.editor.completion import complete
+        from robosc.editor.positions import to_offset
+
+        try:
+            document = ls.workspace.get_text_document(params.text_document.uri)
+            before = document.source[: to_offset(document.source, params.position)]
+            entry = ls.checked.get(params.text_document.uri)  # the last model that checked
+            items = complete(before, entry[0] if entry else None)
+            return lsp.CompletionList(is_incomplete=False, items=items)
+        except Exception:
+            log.exception("completion failed")
+            return None
+
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)
     def formatting(ls: RoboscServer, params: lsp.DocumentFormattingParams) -> list[lsp.TextEdit] | None:
         from robosc.api import format_text
