@@ -20,7 +20,7 @@ from robosc.editor.diagnostics import by_file
 from robosc.editor.navigation import Index
 from robosc.editor.outline import folds, outline
 
-DEBOUNCE_SECONDS = 0.1
+DEBOUNCE_SECONDS = 0.02  # a burst of keystrokes is checked once; short against the 100 ms target
 log = logging.getLogger(__name__)
 
 
