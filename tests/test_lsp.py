@@ -79,6 +79,19 @@ async def test_diagnostics_on_open_and_on_change(client: LanguageClient, tmp_pat
     assert (d.range.start.line, d.range.start.character) == (line, column)
     assert (d.range.end.line, d.range.end.character) == (line, column + len("fron"))
     assert d.message == "unknown state or variable 'fron' in component 'Distance'\nhint: did you mean 'front'?"
+    # the quick fix the hint names
+    actions = await client.text_document_code_action_async(
+        lsp.CodeActionParams(
+            text_document=lsp.TextDocumentIdentifier(uri=uri),
+            range=d.range,
+            context=lsp.CodeActionContext(diagnostics=[d]),
+        )
+    )
+    assert actions is not None and len(actions) == 1
+    action = actions[0]
+    assert isinstance(action, lsp.CodeAction) and action.title == "Change to 'front'"
+    assert action.edit is not None and action.edit.changes is not None
+    assert list(action.edit.changes[uri]) == [lsp.TextEdit(range=d.range, new_text="front")]
     change(client, uri, text, 3)  # fixed again
     assert await diagnostics_of(client, uri) == []
 

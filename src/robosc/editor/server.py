@@ -16,7 +16,7 @@ from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
 from robosc import __version__
-from robosc.editor.diagnostics import by_file
+from robosc.editor.diagnostics import by_file, code_actions
 from robosc.editor.navigation import Index
 from robosc.editor.outline import folds, outline
 
@@ -194,6 +194,16 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             return lsp.CompletionList(is_incomplete=False, items=items)
         except Exception:
             log.exception("completion failed")
+            return None
+
+    @server.feature(
+        lsp.TEXT_DOCUMENT_CODE_ACTION, lsp.CodeActionOptions(code_action_kinds=[lsp.CodeActionKind.QuickFix])
+    )
+    def actions(ls: RoboscServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction] | None:
+        try:
+            return code_actions(params.text_document.uri, list(params.context.diagnostics))
+        except Exception:
+            log.exception("code actions failed")
             return None
 
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)
