@@ -271,6 +271,45 @@ def test_event_log_rotates_at_its_size(tmp_path: Path) -> None:
     assert unbounded.rotations == 0
 
 
+def test_view_topics_carry_events_only_while_someone_listens() -> None:
+    node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
+    listeners = [0]
+    node.text_subscribers = lambda name: listeners[0] if name == "live_view/events" else 0  # type: ignore[method-assign]
+    snapshots = [0]
+    snapshot = node.supervisor.snapshot
+
+    def counted() -> Any:
+        snapshots[0] += 1
+        return snapshot()
+
+    node.supervisor.snapshot = counted
+    node.view_topics = True
+    node.start_recording()
+    scan = Data({"ranges": [0.3] + [5.0] * 359})
+    node.receive(node.inputs["/scan"], scan)
+    assert node.texts == [] and snapshots[0] == 0  # nobody listens: no record is even made
+    listeners[0] = 1
+    node.receive(node.inputs["/scan"], scan)
+    events = [json.loads(text) for name, text in node.texts if name == "live_view/events"]
+    assert [e["event"] for e in events][:3] == ["scan_front", "scan_right", "scan_diag_right"]
+    assert events[0]["state"]["variables"]["Distance.front"] == "wall_front"
+    node.texts.clear()
+    node.start_view_topics(b"<html>page</html>")
+    assert node.texts[0] == ("live_view/page", "<html>page</html>")
+    assert node.texts[1][0] == "live_view/events" and json.loads(node.texts[1][1])["event"] is None
+
+
+def test_view_page_is_read_only_when_asked_for() -> None:
+    off = FakeNode("examples/maze_solver.rscd", "controller", view_topics=False)
+    assert off.view_page(type(off.supervisor)) is None and off.logs == [] and not off.view_topics
+    on = FakeNode("examples/maze_solver.rscd", "controller")  # view_topics by default; this package has no page
+    assert on.view_page(type(on.supervisor)) is None and not on.view_topics
+    assert on.logs[-1][0] == "warning" and "no live view page for robosc view" in on.logs[-1][1]
+    served = FakeNode("examples/maze_solver.rscd", "controller", view_port=8765)
+    assert served.view_page(type(served.supervisor)) is None
+    assert served.logs[-1][0] == "error" and "live view not started on port 8765" in served.logs[-1][1]
+
+
 def test_warnings_are_rate_limited() -> None:
     now = [0.0]
     out: list[str] = []

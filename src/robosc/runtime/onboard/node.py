@@ -22,7 +22,7 @@ import time
 from typing import Any, Callable, Dict, List, Optional, Union
 
 from .messages import Unsendable, candidates, fill, received, wire_type
-from .recording import EventLog, Recorder, writable
+from .recording import EventLog, Gated, Recorder, writable
 from .supervisor import Warnings
 from .values import finite, plain
 
@@ -151,6 +151,7 @@ class NodeCore(object):
         self.log = log
         self.cycles = 0  # timer cycles run so far
         self.live_view: Any = None
+        self.view_topics = False  # the page and the events on live_view/* (set by view_page)
         self.params: Dict[str, Any] = {}
         for p in PARAMETERS:
             value, why = p.check(parameters.get(p.name, p.default))
@@ -208,28 +209,42 @@ class NodeCore(object):
     def start_recording(
         self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
     ) -> None:
-        """Events go to the event log, the live view (a sink) and the view topics, if any,
-        stamped by ``clock``: the node's clock, which is the simulation's under ``use_sim_time``."""
+        """Events go to the event log, the live view (a sink) and the view topics (while anyone
+        listens), if any, stamped by ``clock``: the node's clock, which is the simulation's under
+        ``use_sim_time``."""
         if live_view is not None:
             self.sinks.append(live_view)
-        if self.params["view_topics"]:
-            self.sinks.append(self.view_event)
+        if self.view_topics:
+            self.sinks.append(Gated(self.view_event, lambda: self.text_subscribers(VIEW_EVENTS_TOPIC) > 0))
         if self.sinks:
             self.supervisor.observer = Recorder(self.supervisor, self.sinks, clock)
 
     def view_page(self, robot_class: Any) -> Optional[bytes]:
-        """The live view's page generated next to the robot's module, or None (with the reason
-        logged) when the package has none."""
+        """The live view's page generated next to the robot's module, read when the live view
+        or the view topics are on; None (with the reason logged) when the package has none.
+        Sets ``view_topics``: on when asked for and there is a page to show."""
+        port = self.params["view_port"]
+        if not (port or self.params["view_topics"]):
+            return None
         module = sys.modules.get(robot_class.__module__)
         folder = os.path.dirname(os.path.abspath(getattr(module, "__file__", None) or "."))
         try:
             with open(os.path.join(folder, "live_view.html"), "rb") as handle:
-                return handle.read()
+                page = handle.read()
         except OSError as error:
-            self.log("warning", "no live view page: %s (generate the package with graphviz)" % (error,))
+            if port:
+                self.log(
+                    "error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error)
+                )
+            else:
+                self.log(
+                    "warning", "no live view page for robosc view: %s (generate the package with graphviz)" % (error,)
+                )
             return None
+        self.view_topics = bool(self.params["view_topics"])
+        return page
 
-    def open_live_view(self, robot_class: Any, page: Optional[bytes]) -> Any:
+    def open_live_view(self, page: Optional[bytes]) -> Any:
         """The live view on 127.0.0.1:``view_port``, or None when it is off or cannot start."""
         port = self.params["view_port"]
         if not port or page is None:
@@ -258,15 +273,15 @@ class NodeCore(object):
     def start_view_topics(self, page: Optional[bytes]) -> None:
         """After the adapter made the ``live_view/*`` publishers: the page, once (latched),
         and the current state; each event follows through :meth:`view_event`."""
-        if not self.params["view_topics"] or page is None:
+        if not self.view_topics or page is None:
             return
         self.publish_text(VIEW_PAGE_TOPIC, page.decode("utf-8", "replace"))
         self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(self.state_record(), sort_keys=True, default=str))
 
     def view_event(self, record: Dict[str, Any]) -> None:
-        """A sink: an event record on ``live_view/events`` while anyone subscribes."""
-        if self.text_subscribers(VIEW_EVENTS_TOPIC):
-            self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(record, sort_keys=True, default=str))
+        """A sink (gated by ``start_recording`` on the topic's subscribers): an event record on
+        ``live_view/events``."""
+        self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(record, sort_keys=True, default=str))
 
     # ---- the cycle -----------------------------------------------------------------------
     def cycle(self) -> None:

@@ -12,9 +12,21 @@ from typing import Any, Callable, Iterable, Optional
 from .values import plain
 
 
+class Gated(object):
+    """A sink that wants records only while ``wanted()`` says so (a topic with no subscriber):
+    while no sink wants one, the record is not even made."""
+
+    def __init__(self, sink: Callable[[dict[str, Any]], Any], wanted: Callable[[], bool]) -> None:
+        self.sink = sink
+        self.wanted = wanted
+
+    def __call__(self, record: dict[str, Any]) -> Any:
+        return self.sink(record)
+
+
 class Recorder(object):
     """An observer for the supervisor: hands each event, with its time, data and the
-    resulting state, to every sink. A failing sink is reported, never fatal."""
+    resulting state, to every sink that wants it. A failing sink is reported, never fatal."""
 
     def __init__(
         self, supervisor: Any, sinks: Iterable[Callable[[dict[str, Any]], Any]], clock: Callable[[], float] = time.time
@@ -24,6 +36,9 @@ class Recorder(object):
         self.clock = clock
 
     def __call__(self, event: str, controllable: bool, data: Any) -> None:
+        sinks = [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]
+        if not sinks:
+            return
         record = {
             "time": round(self.clock(), 6),
             "event": event,
@@ -31,7 +46,7 @@ class Recorder(object):
             "data": plain(data),
             "state": self.supervisor.snapshot(),
         }
-        for sink in self.sinks:
+        for sink in sinks:
             try:
                 sink(record)
             except Exception as error:  # a full disk or a closed page must not stop the node

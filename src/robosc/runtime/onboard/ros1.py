@@ -55,7 +55,7 @@ class SupervisorNode(NodeCore):
         self.lock = self.supervisor.lock
         self._load_types()
         page = self.view_page(robot_class)
-        self.live_view = self.open_live_view(robot_class, page)  # before anything can deliver an event
+        self.live_view = self.open_live_view(page)  # before anything can deliver an event
         self.start_recording(self.live_view.publish if self.live_view is not None else None, rospy.get_time)
         self._create()
         self.start_view_topics(page)
@@ -76,7 +76,7 @@ class SupervisorNode(NodeCore):
         depth = self.params["qos_depth"]
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
-        if self.params["view_topics"]:  # latched: a viewer that comes later gets the page and the last event
+        if self.view_topics:  # latched: a viewer that comes later gets the page and the last event
             for name in (VIEW_PAGE_TOPIC, VIEW_EVENTS_TOPIC):
                 self.text_publishers[name] = rospy.Publisher(name, self.text_type, queue_size=100, latch=True)
         if supervising:

@@ -69,7 +69,7 @@ class SupervisorNode(Node, NodeCore):
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
         page = self.view_page(robot_class)
-        self.live_view = self.open_live_view(robot_class, page)  # before anything can deliver an event
+        self.live_view = self.open_live_view(page)  # before anything can deliver an event
         self.start_recording(self.live_view.publish if self.live_view is not None else None, self._now)
         self._create()
         self.start_view_topics(page)
@@ -107,7 +107,7 @@ class SupervisorNode(Node, NodeCore):
         overrides = QoSOverridingOptions.with_default_policies()
         supervising = self.mode == "supervisor"
         self.text_publishers = {STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10)}
-        if self.params["view_topics"]:  # transient local: a viewer that comes later gets the page and last events
+        if self.view_topics:  # transient local: a viewer that comes later gets the page and last events
             latched = QoSProfile(
                 depth=depth, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
             )
