@@ -201,6 +201,8 @@ def run_world(
     domain: int | None = None,
     page: str | None = None,
     on_start: Callable[[object], None] | None = None,
+    plan: Plan | None = None,
+    on_note: Callable[[str], None] | None = None,
 ) -> Report:
     """Drive ``robots`` robots in a 2D world (a world file or a loaded one) with the
     controller of a successful synthesis ``result``: on ROS ``ros`` (1 or 2: the generated
@@ -209,14 +211,20 @@ def run_world(
     something, or ``timeout`` simulated seconds passed. Raises ``robosc.sim.world.WorldError``
     for a bad world file and ``robosc.sim.session.SessionError`` when the middleware does not
     come up; ``folder`` keeps the package, logs and event logs (else a temporary one is used
-    for ROS runs); ``on_start(graph)`` is called once the ROS nodes are started."""
+    for ROS runs); ``on_start(graph)`` is called once the ROS nodes are started. ``plan`` is
+    the result's plan when it is made already; ``on_note`` hears of the model's topics the
+    simulator does not have. Raises ``robosc.sim.run.Misfit`` when the model sends none of the
+    commands the world's robots obey."""
     from robosc.runtime.simulator import load_module
-    from robosc.sim.run import run_local, run_ros
+    from robosc.sim.run import fit, run_local, run_ros
     from robosc.sim.world import load_world
 
     loaded = world if not isinstance(world, str | Path) else load_world(world)
-    plan = plan_supervisor(result)
+    plan = plan if plan is not None else plan_supervisor(result)
     module = load_module(plan)
+    for note in fit(loaded, module.Robot.COMMUNICATIONS):
+        if on_note is not None:
+            on_note(note)
     if ros is None:
         return run_local(loaded, module, robots, timeout, rate, seed, folder)
     return run_ros(loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, page=page, on_start=on_start)

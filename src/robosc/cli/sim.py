@@ -89,22 +89,6 @@ def sim(
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     result, plan = supervised(model, include, "a simulation")
-    from robosc.runtime.simulator import load_module
-    from robosc.sim.local import COMMAND_ROLES
-    from robosc.sim.run import roles
-
-    module = load_module(plan)
-    used = roles(world, module.Robot.COMMUNICATIONS)
-    commands = [world.topics[role] for role in COMMAND_ROLES]
-    if not set(used) & set(COMMAND_ROLES):
-        raise input_problem(
-            f"{model} sends none of the commands the robots of {world_file} obey ({', '.join(commands)}): "
-            "nothing would move them"
-        )
-    known = {name.lstrip("/") for name in world.topics.values()}
-    for comm in module.Robot.COMMUNICATIONS:
-        if comm.ros_name.lstrip("/") not in known:
-            click.echo(f"robosc: note: the simulator has no {comm.ros_name} ({comm.kind} {comm.name})", err=True)
     if ros != "none":
         _check_middleware(int(ros))
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-sim-"))
@@ -115,8 +99,9 @@ def sim(
 
             page = live_page(result)
         report = _run(
-            result, world, ros, folder, page,
-            robots=robots, timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain,
+            model, result, world, ros, folder, page,
+            plan=plan, robots=robots, timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain,
+            on_note=lambda note: click.echo(f"robosc: note: {note}", err=True),
         )
         _print(report, ros)
         if record:
@@ -130,14 +115,19 @@ def sim(
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
 
-def _run(result: object, world: object, ros: str, folder: Path, page: str | None, **options: Any) -> Report:
+def _run(
+    model: str, result: object, world: object, ros: str, folder: Path, page: str | None, **options: Any
+) -> Report:
     from robosc.api import run_world
+    from robosc.sim.run import Misfit
     from robosc.sim.session import SessionError
 
-    if ros == "none":
-        return run_world(world, result, None, folder=folder, **options)  # type: ignore[arg-type]
     try:
+        if ros == "none":
+            return run_world(world, result, None, folder=folder, **options)  # type: ignore[arg-type]
         return run_world(world, result, int(ros), folder=folder, page=page, on_start=_say_where, **options)  # type: ignore[arg-type]
+    except Misfit as exc:
+        raise input_problem(f"{model} {exc}") from None
     except SessionError as exc:
         raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
 

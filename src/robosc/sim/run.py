@@ -54,6 +54,24 @@ def roles(world: World, communications: tuple[object, ...]) -> list[str]:
     return used
 
 
+class Misfit(Exception):
+    """A model that cannot drive the world's robots: it sends none of the commands they obey."""
+
+
+def fit(world: World, communications: tuple[object, ...]) -> list[str]:
+    """Notes on the model's topics that the simulator does not have (never received, never
+    obeyed); raises Misfit when the model sends none of the commands the robots obey."""
+    if not set(roles(world, communications)) & set(COMMAND_ROLES):
+        commands = ", ".join(world.topics[role] for role in COMMAND_ROLES)
+        raise Misfit(f"sends none of the commands the robots of {world.path} obey ({commands}): nothing would move them")
+    known = {name.lstrip("/") for name in world.topics.values()}
+    return [
+        f"the simulator has no {getattr(c, 'ros_name', '')} ({getattr(c, 'kind', '')} {getattr(c, 'name', '')})"
+        for c in communications
+        if str(getattr(c, "ros_name", "")).lstrip("/") not in known
+    ]
+
+
 def robot_names(count: int) -> list[str]:
     return [f"robot{i + 1}" for i in range(count)]
 
