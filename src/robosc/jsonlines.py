@@ -9,6 +9,7 @@ import queue
 import subprocess
 import threading
 import time
+from collections.abc import Callable
 from typing import IO, Any
 
 
@@ -45,6 +46,21 @@ class LinePeer:
             self._in.flush()
         except (BrokenPipeError, ValueError, OSError):
             raise PeerGone(op) from None
+
+    def wait_for(self, condition: Callable[[dict[str, Any]], bool], timeout: float) -> dict[str, Any] | None:
+        """The first line from the process that meets ``condition`` (the lines before it are
+        used up), or None after ``timeout`` seconds; PeerGone if the process ended first."""
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            try:
+                message = self.lines.get(timeout=0.1)
+            except queue.Empty:
+                continue
+            if message is None:
+                raise PeerGone("ended")
+            if condition(message):
+                return message
+        return None
 
     def quit(self) -> None:
         """Ask the process to end, and close its standard input."""

@@ -7,11 +7,11 @@ on this machine's 127.0.0.1, fed as if the node served it itself.
 from __future__ import annotations
 
 import os
-import queue
 import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
@@ -61,18 +61,26 @@ class Listener:
         except PeerGone:
             raise RemoteError("the ROS listener ended" + self.why()) from None
 
-    def expect(self, op: str, timeout: float) -> dict[str, Any]:
-        end = time.monotonic() + timeout
-        while time.monotonic() < end:
-            try:
-                message = self.lines.get(timeout=0.1)
-            except queue.Empty:
-                continue
-            if message is None:
-                raise RemoteError("the ROS listener ended" + self.why())
+    def expect(
+        self, op: str, timeout: float, nothing: str = "", also: Callable[[dict[str, Any]], None] | None = None
+    ) -> dict[str, Any]:
+        """The next line of ``op``; ``also`` sees each line before it. RemoteError (saying
+        ``nothing``) when none comes in ``timeout`` seconds, or when the listener ended."""
+
+        def wanted(message: dict[str, Any]) -> bool:
             if message.get("op") == op:
-                return message
-        raise RemoteError(f"nothing came from ROS in {timeout:g} s")
+                return True
+            if also is not None:
+                also(message)
+            return False
+
+        try:
+            found = self.peer.wait_for(wanted, timeout)
+        except PeerGone:
+            raise RemoteError("the ROS listener ended" + self.why()) from None
+        if found is None:
+            raise RemoteError(nothing or f"nothing came from ROS in {timeout:g} s")
+        return found
 
     def why(self) -> str:
         time.sleep(0.2)  # its last words
@@ -100,21 +108,13 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
 
     listener.send("watch", namespace=namespace)
     early: list[dict[str, Any]] = []  # events that came before the page
-    end = time.monotonic() + timeout
-    page = None
-    while page is None:
-        if time.monotonic() > end:
-            raise RemoteError(f"no live view page came from {namespace} in {timeout:g} s")
-        try:
-            message = listener.lines.get(timeout=0.1)
-        except queue.Empty:
-            continue
-        if message is None:
-            raise RemoteError("the ROS listener ended" + listener.why())
-        if message.get("op") == "page":
-            page = str(message.get("html", ""))
-        elif message.get("op") == "event" and isinstance(message.get("record"), dict):
+
+    def keep(message: dict[str, Any]) -> None:
+        if message.get("op") == "event" and isinstance(message.get("record"), dict):
             early.append(message["record"])
+
+    nothing = f"no live view page came from {namespace} in {timeout:g} s"
+    page = str(listener.expect("page", timeout, nothing, keep).get("html", ""))
     try:
         view = LiveView(page, port=port)
     except OSError as exc:

@@ -39,17 +39,12 @@ def setup(sim: Simulation, bridge: Bridge, robots: list[str], roles: list[str]) 
 
 
 def wait_for(bridge: Bridge, condition: Callable[[dict[str, Any]], bool], timeout: float, what: str) -> None:
-    end = time.monotonic() + timeout
-    while time.monotonic() < end:
-        try:
-            message = bridge.lines.get(timeout=0.1)
-        except queue.Empty:
-            continue
-        if message is None:
-            raise SessionError(f"the simulator's node ended while waiting for {what}")
-        if condition(message):
-            return
-    raise SessionError(f"timed out after {timeout:g} s waiting for {what}")
+    try:
+        found = bridge.wait_for(condition, timeout)
+    except PeerGone:
+        raise SessionError(f"the simulator's node ended while waiting for {what}") from None
+    if found is None:
+        raise SessionError(f"timed out after {timeout:g} s waiting for {what}")
 
 
 def connected(roles: list[str], robots: int) -> Callable[[dict[str, Any]], bool]:
