@@ -6,8 +6,9 @@ rather than ending the server."""
 from __future__ import annotations
 
 import asyncio
+import functools
 import logging
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -97,6 +98,24 @@ class RoboscServer(LanguageServer):
         self.pending[uri] = loop.call_later(DEBOUNCE_SECONDS, self.check, uri)
 
 
+def answer(what: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """A request handler that answers with nothing, logged, when it fails: a model never
+    ends the server."""
+
+    def wrap(handler: Callable[..., Any]) -> Callable[..., Any]:
+        @functools.wraps(handler)
+        def guarded(ls: RoboscServer, params: Any) -> Any:
+            try:
+                return handler(ls, params)
+            except Exception:
+                log.exception("%s failed", what)
+                return None
+
+        return guarded
+
+    return wrap
+
+
 def create(search_paths: Sequence[str] = ()) -> RoboscServer:
     server = RoboscServer(search_paths)
 
@@ -126,100 +145,76 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=[]))
 
     @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    @answer("outline")
     def symbols(ls: RoboscServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol] | None:
-        try:
-            tree, lines = ls.syntax(params.text_document.uri)
-            return outline(tree, lines) if tree is not None else None
-        except Exception:
-            log.exception("outline failed")
-            return None
+        tree, lines = ls.syntax(params.text_document.uri)
+        return outline(tree, lines) if tree is not None else None
 
     @server.feature(lsp.TEXT_DOCUMENT_FOLDING_RANGE)
+    @answer("folding")
     def folding(ls: RoboscServer, params: lsp.FoldingRangeParams) -> list[lsp.FoldingRange] | None:
-        try:
-            tree, _ = ls.syntax(params.text_document.uri)
-            return folds(tree) if tree is not None else None
-        except Exception:
-            log.exception("folding failed")
-            return None
+        tree, _ = ls.syntax(params.text_document.uri)
+        return folds(tree) if tree is not None else None
 
     @server.feature(lsp.TEXT_DOCUMENT_HOVER)
+    @answer("hover")
     def hover(ls: RoboscServer, params: lsp.HoverParams) -> lsp.Hover | None:
         from robosc.editor.hover import describe, word_at
 
-        try:
-            entry = ls.checked.get(params.text_document.uri)
-            if entry is None:
-                return None
-            document = ls.workspace.get_text_document(params.text_document.uri)
-            lines = document.source.splitlines()
-            line = lines[params.position.line] if params.position.line < len(lines) else ""
-            name = word_at(line, params.position.character)
-            text = describe(entry[0], entry[1], name) if name else None
-            if text is None:
-                return None
-            return lsp.Hover(contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text))
-        except Exception:
-            log.exception("hover failed")
+        entry = ls.checked.get(params.text_document.uri)
+        if entry is None:
             return None
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        lines = document.source.splitlines()
+        line = lines[params.position.line] if params.position.line < len(lines) else ""
+        name = word_at(line, params.position.character)
+        text = describe(entry[0], entry[1], name) if name else None
+        if text is None:
+            return None
+        return lsp.Hover(contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text))
 
     @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
+    @answer("definition")
     def definition(ls: RoboscServer, params: lsp.DefinitionParams) -> lsp.Location | None:
         index = ls.indexes.get(params.text_document.uri)
-        try:
-            return index.definition(params.position) if index is not None else None
-        except Exception:
-            log.exception("definition failed")
-            return None
+        return index.definition(params.position) if index is not None else None
 
     @server.feature(lsp.TEXT_DOCUMENT_REFERENCES)
+    @answer("references")
     def references(ls: RoboscServer, params: lsp.ReferenceParams) -> list[lsp.Location] | None:
         index = ls.indexes.get(params.text_document.uri)
-        try:
-            return index.uses(params.position, params.context.include_declaration) if index is not None else None
-        except Exception:
-            log.exception("references failed")
-            return None
+        return index.uses(params.position, params.context.include_declaration) if index is not None else None
 
     @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[".", " "]))
+    @answer("completion")
     def completion(ls: RoboscServer, params: lsp.CompletionParams) -> lsp.CompletionList | None:
         from robosc.editor.completion import complete
         from robosc.editor.positions import to_offset
 
-        try:
-            document = ls.workspace.get_text_document(params.text_document.uri)
-            before = document.source[: to_offset(document.source, params.position)]
-            entry = ls.checked.get(params.text_document.uri)  # the last model that checked
-            items = complete(before, entry[0] if entry else None)
-            return lsp.CompletionList(is_incomplete=False, items=items)
-        except Exception:
-            log.exception("completion failed")
-            return None
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        before = document.source[: to_offset(document.source, params.position)]
+        entry = ls.checked.get(params.text_document.uri)  # the last model that checked
+        return lsp.CompletionList(is_incomplete=False, items=complete(before, entry[0] if entry else None))
 
     @server.feature(
         lsp.TEXT_DOCUMENT_CODE_ACTION, lsp.CodeActionOptions(code_action_kinds=[lsp.CodeActionKind.QuickFix])
     )
+    @answer("code actions")
     def actions(ls: RoboscServer, params: lsp.CodeActionParams) -> list[lsp.CodeAction] | None:
-        try:
-            return code_actions(params.text_document.uri, list(params.context.diagnostics))
-        except Exception:
-            log.exception("code actions failed")
-            return None
+        return code_actions(params.text_document.uri, list(params.context.diagnostics))
 
     @server.feature(lsp.TEXT_DOCUMENT_FORMATTING)
+    @answer("formatting")
     def formatting(ls: RoboscServer, params: lsp.DocumentFormattingParams) -> list[lsp.TextEdit] | None:
         from robosc.api import format_text
 
-        try:
-            document = ls.workspace.get_text_document(params.text_document.uri)
-            formatted = format_text(document.source, ls.path_of(document.uri))
-        except Exception:
-            log.exception("formatting failed")
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        formatted = format_text(document.source, ls.path_of(document.uri))
+        if not isinstance(formatted, str):  # it does not parse: nothing to do
             return None
-        if not isinstance(formatted, str) or formatted == document.source:
-            return None if not isinstance(formatted, str) else []
-        lines = document.source.splitlines(keepends=True)
-        end = lsp.Position(line=len(lines), character=0)
+        if formatted == document.source:
+            return []
+        end = lsp.Position(line=len(document.source.splitlines(keepends=True)), character=0)
         return [lsp.TextEdit(range=lsp.Range(start=lsp.Position(line=0, character=0), end=end), new_text=formatted)]
 
     return server
