@@ -96,6 +96,51 @@ async def test_diagnostics_on_open_and_on_change(client: LanguageClient, tmp_pat
     assert await diagnostics_of(client, uri) == []
 
 
+async def quick_fixes(client: LanguageClient, uri: str, found: list[lsp.Diagnostic]) -> list[lsp.CodeAction]:
+    actions = await client.text_document_code_action_async(
+        lsp.CodeActionParams(
+            text_document=lsp.TextDocumentIdentifier(uri=uri),
+            range=found[0].range,
+            context=lsp.CodeActionContext(diagnostics=found),
+        )
+    )
+    assert actions is not None
+    return [a for a in actions if isinstance(a, lsp.CodeAction)]
+
+
+@pytest.mark.asyncio
+async def test_quick_fixes_escape_a_keyword_and_add_a_range(client: LanguageClient, tmp_path: Path) -> None:
+    text = (
+        "robot R {\n"
+        "    component C {\n"
+        "        outgoing message beep with type: none\n"
+        "        behaviour {\n"
+        "            variable n: integer = 12\n"
+        "            initial marked state state { on response from beep do n := n + 1 goto ^state }\n"
+        "        }\n"
+        "    }\n"
+        "    requirement beep needs C.n < 3\n"
+        "}\n"
+    )
+    path = tmp_path / "r.rscd"
+    uri = open_document(client, path, text)
+    found = await diagnostics_of(client, uri)
+    assert [d.code for d in found] == ["syntax"]
+    (action,) = await quick_fixes(client, uri, found)
+    assert action.title == "Escape the keyword: '^state'"
+    text = apply_edit(text, action.edit, uri)
+    assert "initial marked state ^state {" in text
+    change(client, uri, text, 2)
+    found = await diagnostics_of(client, uri)
+    assert [d.code for d in found] == ["rule-9"]  # n takes part in synthesis: it needs a range
+    (action,) = await quick_fixes(client, uri, found)
+    assert action.title == "Add the range (0..12)"  # 0..10, widened to hold the initial 12
+    text = apply_edit(text, action.edit, uri)
+    assert "variable n: integer(0..12) = 12" in text
+    change(client, uri, text, 3)
+    assert await diagnostics_of(client, uri) == []
+
+
 @pytest.mark.asyncio
 async def test_errors_inside_a_library_go_to_the_library(client: LanguageClient, tmp_path: Path) -> None:
     library = (EXAMPLES / "emergency_stop.rscd").read_text()
@@ -156,6 +201,10 @@ async def test_hover_shows_what_synthesis_added_and_why(client: LanguageClient) 
         )
     )
     assert hover is not None and "**state `Tray.two`**" in hover.contents.value  # type: ignore[union-attr]
+    # where it is used: two gotos and a requirement (not the comment on line 3)
+    used = sorted(i + 1 for i, t in enumerate(lines) if "goto two" in t or "Tray.two" in t)
+    assert used == [84, 94, 102]
+    assert hover.contents.value.endswith(f"used 3 times: line {', '.join(map(str, sorted(used)))}")  # type: ignore[union-attr]
 
 
 def where(path: Path, text: str, nth: int = 0, offset: int = 0) -> lsp.Position:
@@ -176,17 +225,19 @@ async def test_definition_and_references(client: LanguageClient) -> None:
     use = where(path, "Platform.ready", 0, len("Platform.") + 1)
     found = await client.text_document_definition_async(lsp.DefinitionParams(text_document=doc, position=use))
     assert isinstance(found, lsp.Location) and found.uri == uri
-    assert found.range.start == where(path, "initial marked state ready")
+    assert found.range.start == where(path, "initial marked state ready", 0, len("initial marked state "))
     # 'goto turning' -> the state turning
     found = await client.text_document_definition_async(
         lsp.DefinitionParams(text_document=doc, position=where(path, "goto turning", 0, len("goto t")))
     )
-    assert isinstance(found, lsp.Location) and found.range.start == where(path, "state turning")
+    assert isinstance(found, lsp.Location) and found.range.start == where(path, "state turning", 0, len("state "))
     # the data type of a message -> its declaration
     found = await client.text_document_definition_async(
         lsp.DefinitionParams(text_document=doc, position=where(path, "type: WallFront", 0, len("type: W")))
     )
-    assert isinstance(found, lsp.Location) and found.range.start == where(path, "enum WallFront from LaserScan")
+    assert isinstance(found, lsp.Location) and found.range == lsp.Range(
+        start=where(path, "enum WallFront from", 0, len("enum ")), end=where(path, "enum WallFront from", 0, len("enum WallFront"))
+    )
     # every use of Platform.ready: three requirements, 'goto ready' and its declaration
     uses = await client.text_document_references_async(
         lsp.ReferenceParams(
@@ -196,7 +247,7 @@ async def test_definition_and_references(client: LanguageClient) -> None:
     assert uses is not None
     starts = sorted((u.range.start.line, u.range.start.character) for u in uses)
     expected = sorted(
-        [(where(path, "initial marked state ready").line, where(path, "initial marked state ready").character)]
+        [(where(path, "initial marked state ready").line, where(path, "initial marked state ready").character + 21)]
         + [(p.line, p.character + len("Platform.")) for p in (where(path, "Platform.ready", n) for n in range(3))]
         + [(where(path, "goto ready").line, where(path, "goto ready").character + len("goto "))]
     )
@@ -329,3 +380,103 @@ def test_positions_count_utf16_units() -> None:
     r = to_range(Span("f", 1, column, 1, column + 4, 0, 0), lines)
     assert (r.start.line, r.start.character, r.end.character) == (0, column - 1 + 1, column - 1 + 1 + 4)  # 😀 is two units
     assert to_offset(lines[0], lsp.Position(line=0, character=r.start.character)) == column - 1
+
+
+def apply_edit(text: str, edit: lsp.WorkspaceEdit | None, uri: str) -> str:
+    """``text`` after the edits a workspace edit makes in ``uri`` (ASCII text)."""
+    assert edit is not None and edit.changes is not None and set(edit.changes) == {uri}, edit
+    lines = text.splitlines(keepends=True)
+
+    def offset(p: lsp.Position) -> int:
+        return sum(len(line) for line in lines[: p.line]) + p.character
+
+    for e in sorted(edit.changes[uri], key=lambda e: offset(e.range.start), reverse=True):
+        text = text[: offset(e.range.start)] + e.new_text + text[offset(e.range.end) :]
+    return text
+
+
+async def rename(client: LanguageClient, uri: str, at: lsp.Position, new_name: str) -> lsp.WorkspaceEdit | None:
+    return await client.text_document_rename_async(
+        lsp.RenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=at, new_name=new_name)
+    )
+
+
+@pytest.mark.asyncio
+async def test_rename_a_state_everywhere_and_escape_a_keyword(client: LanguageClient) -> None:
+    from robosc.api import check_text
+
+    path = EXAMPLES / "maze_solver.rscd"
+    text = path.read_text()
+    uri = open_document(client, path)
+    await diagnostics_of(client, uri)
+    use = where(path, "Platform.ready", 1, len("Platform.r"))
+    prepared = await client.text_document_prepare_rename_async(
+        lsp.PrepareRenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=use)
+    )
+    assert isinstance(prepared, lsp.PrepareRenamePlaceholder) and prepared.placeholder == "ready"
+    assert prepared.range.start == where(path, "Platform.ready", 1, len("Platform."))
+    edit = await rename(client, uri, use, "waiting")
+    assert edit is not None and edit.changes is not None and len(edit.changes[uri]) == 5  # declaration, 3 uses, goto
+    after = apply_edit(text, edit, uri)
+    assert after.count("Platform.waiting") == 3 and "initial marked state waiting {" in after and "goto waiting" in after
+    assert "ready" not in after.replace("already", "")
+    assert check_text(after, str(path)).ok
+    # a keyword as the new name is written with its ^, from the declaration too
+    declared = where(path, "initial marked state ready", 0, len("initial marked state re"))
+    after = apply_edit(text, await rename(client, uri, declared, "state"), uri)
+    assert after.count("Platform.^state") == 3 and "initial marked state ^state {" in after and "goto ^state" in after
+    assert check_text(after, str(path)).ok
+
+
+@pytest.mark.asyncio
+async def test_rename_a_component_and_refusals(client: LanguageClient) -> None:
+    from pygls.exceptions import JsonRpcException
+
+    from robosc.api import check_text
+
+    path = EXAMPLES / "maze_solver.rscd"
+    text = path.read_text()
+    uri = open_document(client, path)
+    await diagnostics_of(client, uri)
+    after = apply_edit(text, await rename(client, uri, where(path, "component Platform", 0, len("component P")), "Base"), uri)
+    assert "component Base {" in after and after.count("Base.ready") == 3 and "Platform" not in after
+    assert check_text(after, str(path)).ok
+    # a name that is taken: the other state of Platform
+    with pytest.raises(JsonRpcException, match="not renamed: the model would not check"):
+        await rename(client, uri, where(path, "state turning", 0, len("state t")), "ready")
+    with pytest.raises(JsonRpcException, match="'2fast' is not a name"):
+        await rename(client, uri, where(path, "state turning", 0, len("state t")), "2fast")
+    # a keyword is not a name to rename
+    keyword = where(path, "requirement turn_left", 0, 2)
+    prepared = await client.text_document_prepare_rename_async(
+        lsp.PrepareRenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=keyword)
+    )
+    assert prepared is None
+    with pytest.raises(JsonRpcException, match="no name to rename here"):
+        await rename(client, uri, keyword, "x")
+
+
+@pytest.mark.asyncio
+async def test_renamed_communication_keeps_its_ros_name(client: LanguageClient, tmp_path: Path) -> None:
+    """A communication without an identifier is on ROS under its name; renamed, it keeps it."""
+    from robosc.api import check_text
+
+    text = (
+        "robot R {\n"
+        "    component C {\n"
+        "        outgoing message beep with type: none\n"
+        "        behaviour { initial marked state s { on response from beep goto s } }\n"
+        "    }\n"
+        "    requirement beep needs C.s\n"
+        "}\n"
+    )
+    path = tmp_path / "r.rscd"
+    path.write_text(text)
+    uri = open_document(client, path, text)
+    assert await diagnostics_of(client, uri) == []
+    after = apply_edit(text, await rename(client, uri, where(path, "beep with", 0, 1), "chirp"), uri)
+    assert 'outgoing message chirp with identifier: "beep", type: none' in after
+    assert "from chirp goto" in after and "requirement chirp needs" in after
+    result = check_text(after, str(path))
+    assert result.ok and result.model is not None
+    assert result.model.components[0].communications[0].ros_name == "beep"

@@ -20,6 +20,18 @@ def word_at(line: str, character: int) -> str | None:
     return None
 
 
+def used_at(uses: list[Any], uri: str, most: int = 12) -> str:
+    """Where a name is used, as Markdown: lines of this file, ``file:line`` of others."""
+    if not uses:
+        return "\n\n_not used anywhere_"
+    places = [
+        str(u.range.start.line + 1) if u.uri == uri else f"{u.uri.rsplit('/', 1)[-1]}:{u.range.start.line + 1}"
+        for u in uses[:most]
+    ]
+    more = f" and {len(uses) - most} more" if len(uses) > most else ""
+    return f"\n\nused {len(uses)} time{'s' if len(uses) != 1 else ''}: line {', '.join(places)}{more}"
+
+
 def _type_name(t: Any) -> str:
     return str(getattr(t, "name", None) or getattr(getattr(t, "kind", None), "value", None) or t)
 

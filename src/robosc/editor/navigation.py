@@ -1,15 +1,27 @@
-"""Go to definition and find references, from the names the resolver resolved
-(``CheckResult.references``: each name's span and the model object it names)."""
+"""Go to definition, find references and rename, from the names the resolver resolved
+(``CheckResult.references``: each name's span and the model object it names) and the
+declarations of the checked model."""
 
 from __future__ import annotations
 
+import re
+from collections.abc import Iterable
 from typing import Any
 
 from lsprotocol import types as lsp
 from pygls.uris import from_fs_path
 
 from robosc.editor.positions import to_range
+from robosc.language import model as m
+from robosc.language.keywords import KEYWORDS
 from robosc.language.source import SourceFile, Span
+
+NAME = re.compile(r"\^?[A-Za-z_][A-Za-z0-9_]*")
+WHOLE_NAME = re.compile(r"\^?[A-Za-z_][A-Za-z0-9_]*\Z")
+
+
+class RenameError(Exception):
+    """A rename that cannot be made; the message says why."""
 
 
 def _contains(span: Span, line: int, character: int) -> bool:
@@ -18,16 +30,70 @@ def _contains(span: Span, line: int, character: int) -> bool:
     return start <= (line, character) <= end
 
 
+def _span_of(path: str, text: str, start: int, end: int) -> Span:
+    def line_column(offset: int) -> tuple[int, int]:
+        return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
+
+    (line, column), (end_line, end_column) = line_column(start), line_column(end)
+    return Span(path, line, column, end_line, end_column, start, end)
+
+
+def spelled(name: str) -> str:
+    """A name as written in a model: a keyword gets its ``^``."""
+    return f"^{name}" if name in KEYWORDS else name
+
+
+def declarations(model: m.Model | None) -> list[Any]:
+    """Every named declaration of a checked model (also those nothing refers to)."""
+    if model is None:
+        return []
+    found: list[Any] = [*model.interfaces]
+    for data_type in model.data_types:
+        found.append(data_type)
+        found += getattr(data_type, "properties", ())
+        found += getattr(data_type, "values", ())
+    for component in model.components:
+        found.append(component)
+        found += component.communications
+        for automaton in component.behaviours:
+            found += automaton.states
+            found += automaton.variables
+    return found
+
+
 class Index:
     """The references of one check of one file, and the texts of the files it read."""
 
-    def __init__(self, path: str, references: tuple[tuple[Span, Any], ...], sources: dict[str, SourceFile]) -> None:
+    def __init__(
+        self,
+        path: str,
+        references: tuple[tuple[Span, Any], ...],
+        sources: dict[str, SourceFile],
+        declared: Iterable[Any] = (),
+    ) -> None:
         self.path = path
         self.references = references
-        self.lines = {p: source.text.splitlines() for p, source in sources.items()}
+        self.texts = {p: source.text for p, source in sources.items()}
+        self.lines = {p: text.splitlines() for p, text in self.texts.items()}
+        targets = {id(t): t for t in declared}
+        targets.update((id(t), t) for _, t in references)
+        self.targets = [t for t in targets.values() if isinstance(getattr(t, "span", None), Span)]
 
     def location(self, span: Span) -> lsp.Location:
         return lsp.Location(uri=from_fs_path(span.path) or span.path, range=to_range(span, self.lines.get(span.path, [])))
+
+    def name_span(self, target: Any) -> Span | None:
+        """Where a declaration writes its name: the first word of its text that is the name
+        (a keyword only with its ``^``)."""
+        span, name = target.span, getattr(target, "name", None)
+        text = self.texts.get(span.path)
+        if text is None or not isinstance(name, str):
+            return None
+        for match in NAME.finditer(text, span.start, span.end):
+            word = match.group()
+            if word.lstrip("^") == name and (word.startswith("^") or name not in KEYWORDS):
+                return _span_of(span.path, text, match.start(), match.end())
+        return None
 
     def target_at(self, position: lsp.Position) -> Any:
         """The model object named at ``position``: a use of it, else its declaration."""
@@ -35,17 +101,26 @@ class Index:
         for span, target in self.references:
             if span.path == self.path and _contains(span, line, character):
                 return target
-        declared = [
-            target
-            for _, target in self.references
-            if target.span.path == self.path and _contains(target.span, line, character)
-        ]
+        declared = [t for t in self.targets if t.span.path == self.path and _contains(t.span, line, character)]
         # the innermost declaration (a state inside a component's span, say)
         return min(declared, key=lambda t: (t.span.end - t.span.start), default=None)
 
+    def name_at(self, position: lsp.Position) -> tuple[Any, Span] | None:
+        """The model object whose name is written at ``position``, and that name's span."""
+        line, character = position.line, position.character
+        for span, target in self.references:
+            if span.path == self.path and _contains(span, line, character):
+                return target, span
+        for target in self.targets:
+            if target.span.path == self.path and _contains(target.span, line, character):
+                written = self.name_span(target)
+                if written is not None and _contains(written, line, character):
+                    return target, written
+        return None
+
     def definition(self, position: lsp.Position) -> lsp.Location | None:
         target = self.target_at(position)
-        return self.location(target.span) if target is not None else None
+        return self.location(self.name_span(target) or target.span) if target is not None else None
 
     def uses(self, position: lsp.Position, declaration: bool) -> list[lsp.Location]:
         target = self.target_at(position)
@@ -53,5 +128,38 @@ class Index:
             return []
         found = [self.location(span) for span, t in self.references if t is target]
         if declaration:
-            found.insert(0, self.location(target.span))
+            found.insert(0, self.location(self.name_span(target) or target.span))
         return found
+
+    def rename(self, position: lsp.Position, new_name: str) -> dict[str, list[tuple[Span, str]]]:
+        """path -> (span, new text) of every place that writes the name at ``position``:
+        its declaration and each use, the new name ``^``-escaped where it is a keyword."""
+        found = self.name_at(position)
+        if found is None:
+            raise RenameError("no name to rename here")
+        target, _ = found
+        if WHOLE_NAME.match(new_name) is None:
+            raise RenameError(f"'{new_name}' is not a name: a letter or '_', then letters, digits or '_'")
+        text = spelled(new_name.lstrip("^"))
+        declared = self.name_span(target)
+        spans = [span for span, t in self.references if t is target]
+        if declared is not None:
+            spans.insert(0, declared)
+        edits: dict[str, list[tuple[Span, str]]] = {}
+        for span in dict.fromkeys(spans):
+            edits.setdefault(span.path, []).append((span, text))
+        kept = self._keep_ros_name(target, declared)
+        if kept is not None:
+            edits.setdefault(kept[0].path, []).append(kept)
+        return edits
+
+    def _keep_ros_name(self, target: Any, declared: Span | None) -> tuple[Span, str] | None:
+        """A communication without an identifier is on the ROS graph under its name: renamed,
+        it keeps that ROS name by gaining ``identifier: "<old name>",`` after its ``with``."""
+        if not isinstance(target, (m.Message, m.Service, m.Action)) or target.identifier is not None or declared is None:
+            return None
+        text = self.texts[declared.path]
+        found = re.compile(r"\bwith\b[ \t]*").search(text, declared.end, target.span.end)
+        if found is None:
+            return None
+        return _span_of(declared.path, text, found.end(), found.end()), f'identifier: "{target.name}", '

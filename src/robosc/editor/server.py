@@ -13,12 +13,13 @@ from pathlib import Path
 from typing import Any
 
 from lsprotocol import types as lsp
+from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
 from robosc import __version__
 from robosc.editor.diagnostics import by_file, code_actions
-from robosc.editor.navigation import Index
+from robosc.editor.navigation import Index, RenameError, declarations
 from robosc.editor.outline import folds, outline
 
 DEBOUNCE_SECONDS = 0.02  # a burst of keystrokes is checked once; short against the 100 ms target
@@ -46,7 +47,9 @@ class RoboscServer(LanguageServer):
             document = self.workspace.get_text_document(uri)
             result = check_text(document.source, self.path_of(uri), self.search_paths)
             found = by_file(result)
-            self.indexes[uri] = Index(self.path_of(uri), result.references, result.sources)
+            self.indexes[uri] = Index(
+                self.path_of(uri), result.references, result.sources, declarations(result.model)
+            )
         except Exception:  # never end the server on a model
             log.exception("checking %s failed", uri)
             return
@@ -80,6 +83,13 @@ class RoboscServer(LanguageServer):
 
         asyncio.get_event_loop().run_in_executor(None, run)
 
+    def current_index(self, uri: str) -> Index | None:
+        """The names of ``uri`` as it is now (checked at once if a check is pending)."""
+        if uri in self.pending:
+            self.pending.pop(uri).cancel()
+            self.check(uri)
+        return self.indexes.get(uri)
+
     def syntax(self, uri: str) -> tuple[Any, list[str]]:
         """The open document's syntax tree (None when it does not parse) and its lines."""
         from robosc.language.parser import parse_source
@@ -96,6 +106,11 @@ class RoboscServer(LanguageServer):
             old.cancel()
         loop = asyncio.get_event_loop()
         self.pending[uri] = loop.call_later(DEBOUNCE_SECONDS, self.check, uri)
+
+
+def failed(message: str) -> JsonRpcException:
+    """A request that could not be done, with why (LSP's RequestFailed)."""
+    return JsonRpcException(message, code=-32803)
 
 
 def answer(what: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
@@ -159,7 +174,7 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
     @server.feature(lsp.TEXT_DOCUMENT_HOVER)
     @answer("hover")
     def hover(ls: RoboscServer, params: lsp.HoverParams) -> lsp.Hover | None:
-        from robosc.editor.hover import describe, word_at
+        from robosc.editor.hover import describe, used_at, word_at
 
         entry = ls.checked.get(params.text_document.uri)
         if entry is None:
@@ -171,6 +186,9 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
         text = describe(entry[0], entry[1], name) if name else None
         if text is None:
             return None
+        index = ls.indexes.get(params.text_document.uri)
+        if index is not None:
+            text += used_at(index.uses(params.position, declaration=False), params.text_document.uri)
         return lsp.Hover(contents=lsp.MarkupContent(kind=lsp.MarkupKind.Markdown, value=text))
 
     @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
@@ -184,6 +202,32 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
     def references(ls: RoboscServer, params: lsp.ReferenceParams) -> list[lsp.Location] | None:
         index = ls.indexes.get(params.text_document.uri)
         return index.uses(params.position, params.context.include_declaration) if index is not None else None
+
+    @server.feature(lsp.TEXT_DOCUMENT_PREPARE_RENAME)
+    @answer("prepare rename")
+    def prepare_rename(ls: RoboscServer, params: lsp.PrepareRenameParams) -> lsp.PrepareRenamePlaceholder | None:
+        index = ls.current_index(params.text_document.uri)
+        found = index.name_at(params.position) if index is not None else None
+        if found is None:
+            return None
+        target, span = found
+        return lsp.PrepareRenamePlaceholder(range=index.location(span).range, placeholder=target.name)  # type: ignore[union-attr]
+
+    @server.feature(lsp.TEXT_DOCUMENT_RENAME)
+    def rename(ls: RoboscServer, params: lsp.RenameParams) -> lsp.WorkspaceEdit | None:
+        from robosc.editor.rename import renamed
+
+        index = ls.current_index(params.text_document.uri)
+        if index is None:
+            raise failed("the model has not been checked yet")
+        try:
+            edits = index.rename(params.position, params.new_name)
+            return renamed(index, edits, ls.search_paths)
+        except RenameError as problem:
+            raise failed(str(problem)) from None
+        except Exception:
+            log.exception("rename failed")
+            raise failed("rename failed: see the server's log") from None
 
     @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[".", " "]))
     @answer("completion")

@@ -14,7 +14,9 @@ from robosc.language.model import (
     DataType,
     FieldStep,
     IndexStep,
+    Literal,
     Model,
+    Variable,
     synthesis_inputs,
     synthesis_variables,
 )
@@ -25,6 +27,13 @@ def _unranged(t: DataType) -> bool:
     return isinstance(t, BasicType) and t.kind is BasicKind.INTEGER and not t.is_ranged_integer
 
 
+def _suggested(variable: Variable) -> str:
+    """A range to start from: 0..10, widened to hold the initial value."""
+    initial = variable.initial.value if isinstance(variable.initial, Literal) else 0
+    value = initial if isinstance(initial, int) and not isinstance(initial, bool) else 0
+    return f"{min(0, value)}..{max(10, value)}"
+
+
 def check(model: Model) -> Iterator[Diagnostic]:
     for variable, use in synthesis_variables(model).items():
         if _unranged(variable.type):
@@ -32,7 +41,7 @@ def check(model: Model) -> Iterator[Diagnostic]:
                 variable.span,
                 f"integer variable '{variable.name}' takes part in synthesis (used at {use.span}) and needs a range",
                 Code.INTEGER_RANGE,
-                f"give it a range, as in '{variable.name}: integer(0..10)'",
+                f"give it a range, as in '{variable.name}: integer({_suggested(variable)})'",
             )
     reported: set[Span] = set()
     for found in synthesis_inputs(model):

@@ -240,4 +240,7 @@ def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> Resolv
         provides,
     )
     unique = tuple(dict.fromkeys(resolver.reporter.diagnostics))
-    return ResolveResult(model, unique, tuple(resolver.reporter.references))
+    # a component named in an expression was referred to by its tables: name the component
+    built = {id(entry.tables): component for entry, component in zip(resolver.order, components, strict=True)}
+    references = tuple((span, built.get(id(target), target)) for span, target in resolver.reporter.references)
+    return ResolveResult(model, unique, references)

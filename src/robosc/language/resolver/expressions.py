@@ -144,6 +144,8 @@ class ExpressionResolver:
             return m.Invalid(syntax.span)
         member = syntax.steps[0].name
         rest = syntax.steps[1:]
+        if syntax.head is not None:  # the component named (its tables, the component once built)
+            self.reporter.refer(syntax.head.span, component)
         if member.text in component.states:
             if rest:
                 self.reporter.error(rest[0].span, f"state '{name}.{member.text}' has no properties", Code.TYPES)
