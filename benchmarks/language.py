@@ -33,7 +33,7 @@ def component(i: int) -> str:
         outgoing message scan{i} with identifier: "/part{i}/scan", type: Level{i} links laser_scan
         outgoing message done{i} with identifier: "/part{i}/done", type: none
         incoming message go{i} with identifier: "/part{i}/go", type: Twist links twist
-        service reset{i} with identifier: "/part{i}/reset", request: none, response: boolean
+        service reset{i} with identifier: "/part{i}/reset", request: none, response: boolean links trigger
 
         behaviour {{
             variable level: Level{i} = far{i}
@@ -82,6 +82,7 @@ HEADER = """robot Generated {
 
     interface twist use Twist from geometry_msgs
     interface laser_scan use LaserScan from sensor_msgs
+    interface trigger use Trigger from std_srvs
 """
 
 

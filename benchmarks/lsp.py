@@ -1,6 +1,7 @@
 """Language-server benchmark (issue 12): over the real protocol (stdio, a pytest-lsp client),
 the time from a didChange to the publishDiagnostics it causes, for the bundled examples and a
-generated 5,000-line model (targets: 100 ms and 500 ms); and the time of a hover that shows an
+generated 5,000-line model (targets: 100 ms and 500 ms; typing in its middle and at its top,
+a key at a time); and the time of a hover that shows an
 added guard once synthesis has finished (target: 50 ms). Medians and maxima of N changes.
 
 Run: python benchmarks/lsp.py [--repeat 20] [--lines 5000]
@@ -78,8 +79,14 @@ async def main() -> None:
         big = generated_model(args.lines)
         uri = (Path(folder) / "big.rscd").as_uri()
         open_doc(client, uri, big)
-        texts = [big + "\n" + "// edit\n" * (i % 3) for i in range(max(5, args.repeat // 4))]
-        line(f"{big.count(chr(10)):,}-line model: change -> diagnostics", await change_to_diagnostics(client, uri, texts), 0.5)
+        lines = big.count("\n")
+        # typing a comment, a key at a time, into a line in the middle of the model, then at its top
+        # (where every definition after the edit moves)
+        for where, fraction in (("middle", 0.5), ("top", 0.02)):
+            at = big.index("\n", int(len(big) * fraction))
+            typed = " // typed here"
+            texts = [big[:at] + typed[: i + 1] + big[at:] for i in range(min(len(typed), max(5, args.repeat // 2)))]
+            line(f"{lines:,}-line model, typing at its {where}", await change_to_diagnostics(client, uri, texts), 0.5)
         # hover of an added guard, once synthesis is done
         shelf = ROOT / "examples" / "shelf_picker.rscd"
         uri = (Path(folder) / "shelf_picker.rscd").as_uri()

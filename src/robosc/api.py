@@ -17,6 +17,7 @@ from robosc.language.diagnostics import Diagnostic, render_text, sort_key
 from robosc.language.loader import InputError, LibraryFinder, read_source
 from robosc.language.model import Model
 from robosc.language.parser import parse_source
+from robosc.language.reparse import Reparser
 from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
 from robosc.record import field, record
@@ -87,9 +88,9 @@ def _search_paths(path: str, search_paths: Sequence[str | Path]) -> list[Path]:
     return [Path(path).parent if path != "<text>" else Path("."), *(Path(p) for p in search_paths)]
 
 
-def _check(source: SourceFile, search_paths: Sequence[str | Path]) -> CheckResult:
+def _check(source: SourceFile, search_paths: Sequence[str | Path], reparser: Reparser | None = None) -> CheckResult:
     sources = {source.path: source}
-    parsed = parse_source(source)
+    parsed = parse_source(source) if reparser is None else reparser.parse(source)
     if parsed.syntax is None:
         return CheckResult(None, parsed.diagnostics, sources)
     finder = LibraryFinder(_search_paths(source.path, search_paths), sources)
@@ -101,10 +102,14 @@ def _check(source: SourceFile, search_paths: Sequence[str | Path]) -> CheckResul
     return CheckResult(resolved.model if ok else None, tuple(diagnostics), sources, resolved.references)
 
 
-def check_text(text: str, path: str = "<text>", search_paths: Sequence[str | Path] = ()) -> CheckResult:
+def check_text(
+    text: str, path: str = "<text>", search_paths: Sequence[str | Path] = (), reparser: Reparser | None = None
+) -> CheckResult:
     """Parse, resolve and check model text. Libraries are looked up next to ``path``
-    and on ``search_paths``. Never raises for bad input: problems are diagnostics."""
-    return _check(SourceFile(path, text), search_paths)
+    and on ``search_paths``. Never raises for bad input: problems are diagnostics.
+    A :class:`~robosc.language.reparse.Reparser` given for successive versions of one file
+    (an editor's) parses only what changed; the result is the same."""
+    return _check(SourceFile(path, text), search_paths, reparser)
 
 
 def check_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> CheckResult:

@@ -36,10 +36,9 @@ def _type_name(t: Any) -> str:
     return str(getattr(t, "name", None) or getattr(getattr(t, "kind", None), "value", None) or t)
 
 
-def describe(model: m.Model, result: Any, name: str) -> str | None:
-    """Markdown about every declaration called ``name``; None if there is none."""
-    from robosc.language.render import render
-
+def describe(model: m.Model, notes: dict[str, list[str]] | None, name: str) -> str | None:
+    """Markdown about every declaration called ``name``; None if there is none. ``notes``:
+    what synthesis found for each communication (:func:`guard_notes`), None while it runs."""
     parts: list[str] = []
     for component in model.components:
         for comm in component.communications:
@@ -51,7 +50,10 @@ def describe(model: m.Model, result: Any, name: str) -> str | None:
             else:
                 head = f"**{kind} `{comm.name}`** of `{component.name}`"
             parts.append(head + f", ROS name `{comm.ros_name}`")
-            parts += _guards(result, comm, render)
+            if notes is None:
+                parts.append("_synthesis is running…_")
+            else:
+                parts += notes.get(NO_SUPERVISOR, []) or notes.get(comm.name, [])
         automaton = component.automaton
         if automaton is None:
             continue
@@ -65,16 +67,20 @@ def describe(model: m.Model, result: Any, name: str) -> str | None:
     return "\n\n".join(parts) if parts else None
 
 
-def _guards(result: Any, comm: m.Communication, render: Any) -> list[str]:
-    if result is None:
-        return ["_synthesis is running…_"]
-    if not result.ok:
-        return ["_no supervisor exists: see `robosc synthesize`_"]
+NO_SUPERVISOR = ""  # the notes' key when synthesis found no supervisor
+
+
+def guard_notes(result: Any) -> dict[str, list[str]]:
+    """Communication name -> a Markdown line per controllable event: the user's condition and
+    the one synthesis added, with why (plain data: made where synthesis ran, shown on hover)."""
+    from robosc.language.render import render
     from robosc.synthesis.warnings import why_lines
 
-    out = []
+    if not result.ok:
+        return {NO_SUPERVISOR: ["_no supervisor exists: see `robosc synthesize`_"]}
+    notes: dict[str, list[str]] = {}
     for guard in result.guards:
-        if guard.event.communication is not comm or not guard.event.controllable:
+        if not guard.event.controllable:
             continue
         required = render(guard.required) if guard.required is not None else "true"
         line = f"- `{guard.event.name}` needs `{required}`"
@@ -83,5 +89,5 @@ def _guards(result: Any, comm: m.Communication, render: Any) -> list[str]:
             restriction = result.why(guard.event)
             if restriction is not None:
                 line += "\n\n```\n" + "\n".join(why_lines(restriction)) + "\n```"
-        out.append(line)
-    return out
+        notes.setdefault(guard.event.communication.name, []).append(line)
+    return notes

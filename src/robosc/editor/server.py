@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import asyncio
 import functools
+import gc
 import logging
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -18,9 +19,11 @@ from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
 from robosc import __version__
+from robosc.editor.background import Synthesizer
 from robosc.editor.diagnostics import by_file, code_actions
 from robosc.editor.navigation import Index, RenameError, declarations
 from robosc.editor.outline import folds, outline
+from robosc.language.reparse import Reparser
 
 DEBOUNCE_SECONDS = 0.02  # a burst of keystrokes is checked once; short against the 100 ms target
 log = logging.getLogger(__name__)
@@ -34,6 +37,8 @@ class RoboscServer(LanguageServer):
         self.published: dict[str, set[str]] = {}  # document uri -> uris it published diagnostics for
         self.checked: dict[str, list[Any]] = {}  # uri -> [checked model, synthesis result or None]
         self.indexes: dict[str, Index] = {}  # uri -> the names resolved by its last check
+        self.reparsers: dict[str, Reparser] = {}  # uri -> the parses of its definitions
+        self.synthesizer = Synthesizer(self.synthesized)
 
     def path_of(self, uri: str) -> str:
         return to_fs_path(uri) or uri
@@ -45,7 +50,14 @@ class RoboscServer(LanguageServer):
         self.pending.pop(uri, None)
         try:
             document = self.workspace.get_text_document(uri)
-            result = check_text(document.source, self.path_of(uri), self.search_paths)
+            reparser = self.reparsers.setdefault(uri, Reparser())
+            paused = gc.isenabled()  # a check makes many objects and no cycles
+            gc.disable()
+            try:
+                result = check_text(document.source, self.path_of(uri), self.search_paths, reparser)
+            finally:
+                if paused:
+                    gc.enable()
             found = by_file(result)
             self.indexes[uri] = Index(
                 self.path_of(uri), result.references, result.sources, declarations(result.model)
@@ -62,26 +74,20 @@ class RoboscServer(LanguageServer):
             self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=stale, diagnostics=[]))
         self.published[uri] = published
         if result.model is not None and result.model.kind == "robot":
-            self.synthesize(uri, result.model)
+            self.synthesize(uri, result.model, document.source)
 
-    def synthesize(self, uri: str, model: Any) -> None:
-        """Synthesis of the checked model on a thread of its own: typing goes on meanwhile;
-        hover shows the result once it is there (and only for the text it was made from)."""
+    def synthesize(self, uri: str, model: Any, text: str) -> None:
+        """Synthesis of the checked model in a process of its own, once typing pauses: typing
+        goes on meanwhile; hover shows the result once it is there (and only for the text it
+        was made from)."""
         entry: list[Any] = [model, None]
         self.checked[uri] = entry
+        self.synthesizer.request(uri, entry, text, self.path_of(uri), [str(p) for p in self.search_paths])
 
-        def run() -> None:
-            from robosc.api import synthesize_model
-
-            try:
-                result = synthesize_model(model)
-            except Exception:
-                log.exception("synthesis of %s failed", uri)
-                return
-            if self.checked.get(uri) is entry:
-                entry[1] = result
-
-        asyncio.get_event_loop().run_in_executor(None, run)
+    def synthesized(self, uri: str, token: Any, notes: dict[str, list[str]] | None) -> None:
+        entry = self.checked.get(uri)
+        if entry is not None and entry is token:
+            entry[1] = notes
 
     def current_index(self, uri: str) -> Index | None:
         """The names of ``uri`` as it is now (checked at once if a check is pending)."""
@@ -156,6 +162,8 @@ def create(search_paths: Sequence[str] = ()) -> RoboscServer:
             handle.cancel()
         ls.checked.pop(uri, None)
         ls.indexes.pop(uri, None)
+        ls.reparsers.pop(uri, None)
+        ls.synthesizer.stop(uri)
         for target in ls.published.pop(uri, {uri}):
             ls.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri=target, diagnostics=[]))
 

@@ -5,8 +5,10 @@ from __future__ import annotations
 import gc
 import re
 import threading
+from collections.abc import Callable
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import lark
 from lark import Lark, Token, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
@@ -60,8 +62,9 @@ _lock = threading.Lock()
 _collector = _CommentCollector()
 
 
-@lru_cache(maxsize=1)
-def _lark() -> Lark:
+def grammar_parser(collect: Callable[[Token], Any], start: str | list[str] = "start") -> Lark:
+    """Lark's LALR parser of the grammar (its tables cached on disk), passing each comment
+    token to ``collect``."""
     return Lark(
         GRAMMAR.read_text(encoding="utf-8"),
         parser="lalr",
@@ -69,8 +72,14 @@ def _lark() -> Lark:
         propagate_positions=True,
         maybe_placeholders=False,
         cache=True,
-        lexer_callbacks={"LINE_COMMENT": _collector, "BLOCK_COMMENT": _collector},
+        start=start,
+        lexer_callbacks={"LINE_COMMENT": collect, "BLOCK_COMMENT": collect},
     )
+
+
+@lru_cache(maxsize=1)
+def _lark() -> Lark:
+    return grammar_parser(_collector)
 
 
 def _describe_terminal(name: str, parser: Lark) -> str:
