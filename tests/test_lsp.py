@@ -401,6 +401,12 @@ async def rename(client: LanguageClient, uri: str, at: lsp.Position, new_name: s
     )
 
 
+async def prepare_rename(client: LanguageClient, uri: str, at: lsp.Position) -> lsp.PrepareRenameResult | None:
+    return await client.text_document_prepare_rename_async(
+        lsp.PrepareRenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=at)
+    )
+
+
 @pytest.mark.asyncio
 async def test_rename_a_state_everywhere_and_escape_a_keyword(client: LanguageClient) -> None:
     from robosc.api import check_text
@@ -410,9 +416,7 @@ async def test_rename_a_state_everywhere_and_escape_a_keyword(client: LanguageCl
     uri = open_document(client, path)
     await diagnostics_of(client, uri)
     use = where(path, "Platform.ready", 1, len("Platform.r"))
-    prepared = await client.text_document_prepare_rename_async(
-        lsp.PrepareRenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=use)
-    )
+    prepared = await prepare_rename(client, uri, use)
     assert isinstance(prepared, lsp.PrepareRenamePlaceholder) and prepared.placeholder == "ready"
     assert prepared.range.start == where(path, "Platform.ready", 1, len("Platform."))
     edit = await rename(client, uri, use, "waiting")
@@ -448,9 +452,7 @@ async def test_rename_a_component_and_refusals(client: LanguageClient) -> None:
         await rename(client, uri, where(path, "state turning", 0, len("state t")), "2fast")
     # a keyword is not a name to rename
     keyword = where(path, "requirement turn_left", 0, 2)
-    prepared = await client.text_document_prepare_rename_async(
-        lsp.PrepareRenameParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=keyword)
-    )
+    prepared = await prepare_rename(client, uri, keyword)
     assert prepared is None
     with pytest.raises(JsonRpcException, match="no name to rename here"):
         await rename(client, uri, keyword, "x")

@@ -18,6 +18,17 @@ EXIT_MODEL_ERRORS = 1
 EXIT_USAGE = 2
 
 
+def view_port_option(f: Callable[..., Any]) -> Callable[..., Any]:
+    """--port: where on 127.0.0.1 the live view is served."""
+    return click.option(
+        "--port",
+        type=click.IntRange(0, 65535),
+        default=8765,
+        show_default=True,
+        help="Port of the live view on 127.0.0.1 (0: any free one).",
+    )(f)
+
+
 def include_option(f: Callable[..., Any]) -> Callable[..., Any]:
     return click.option(
         "-I",

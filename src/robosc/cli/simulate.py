@@ -17,6 +17,7 @@ from robosc.cli.common import (
     include_option,
     input_problem,
     supervised,
+    view_port_option,
 )
 
 if TYPE_CHECKING:
@@ -50,13 +51,7 @@ HELP = """commands:
     help="Write every event to this file: JSON Lines, or MCAP if it ends in .mcap.",
 )
 @click.option("--view", is_flag=True, help="Serve the live view on 127.0.0.1 (see --port) while simulating.")
-@click.option(
-    "--port",
-    type=click.IntRange(0, 65535),
-    default=8765,
-    show_default=True,
-    help="Port of the live view (0: any free one).",
-)
+@view_port_option
 @click.option("--quiet", is_flag=True, help="Print only problems and the final state.")
 @include_option
 def simulate(

@@ -7,13 +7,13 @@ import time
 
 import click
 
-from robosc.cli.common import EXIT_OK, exit_with, input_problem
+from robosc.cli.common import EXIT_OK, exit_with, input_problem, view_port_option
 
 
 @click.command()
 @click.option("--ros", type=click.Choice(["1", "2"]), required=True, help="The ROS graph to look on.")
 @click.option("--namespace", help="The controller to watch, by namespace (/robot1); asked for when there are several.")
-@click.option("--port", type=click.IntRange(0, 65535), default=8765, show_default=True, help="Port on 127.0.0.1 (0: any free one).")
+@view_port_option
 @click.option(
     "--discover",
     type=click.FloatRange(0.1, 60.0),

@@ -37,15 +37,9 @@ def fix_of(d: Diagnostic, text: str, lines: list[str]) -> dict[str, Any] | None:
         bare = list(BARE_INTEGER.finditer(text, d.span.start, d.span.end))
         if len(bare) != 1:
             return None
-        at = _point(d.span.path, text, bare[0].end())
+        at = Span.of(d.span.path, text, bare[0].end())
         return _fix(f"Add the range {found.group(1)}", found.group(1), to_range(at, lines))
     return None
-
-
-def _point(path: str, text: str, offset: int) -> Span:
-    line = text.count("\n", 0, offset) + 1
-    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
-    return Span(path, line, column, line, column, offset, offset)
 
 
 def _fix(title: str, new_text: str, where: lsp.Range) -> dict[str, Any]:

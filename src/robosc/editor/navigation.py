@@ -5,6 +5,7 @@ declarations of the checked model."""
 from __future__ import annotations
 
 import re
+from collections import Counter
 from collections.abc import Iterable
 from typing import Any
 
@@ -13,7 +14,7 @@ from pygls.uris import from_fs_path
 
 from robosc.editor.positions import to_range
 from robosc.language import model as m
-from robosc.language.keywords import KEYWORDS
+from robosc.language.keywords import KEYWORDS, escape_name
 from robosc.language.source import SourceFile, Span
 
 NAME = re.compile(r"\^?[A-Za-z_][A-Za-z0-9_]*")
@@ -28,19 +29,6 @@ def _contains(span: Span, line: int, character: int) -> bool:
     """Whether a span holds an LSP position (lines from 0; characters as columns from 0)."""
     start, end = (span.line - 1, span.column - 1), (span.end_line - 1, span.end_column - 1)
     return start <= (line, character) <= end
-
-
-def _span_of(path: str, text: str, start: int, end: int) -> Span:
-    def line_column(offset: int) -> tuple[int, int]:
-        return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
-
-    (line, column), (end_line, end_column) = line_column(start), line_column(end)
-    return Span(path, line, column, end_line, end_column, start, end)
-
-
-def spelled(name: str) -> str:
-    """A name as written in a model: a keyword gets its ``^``."""
-    return f"^{name}" if name in KEYWORDS else name
 
 
 def declarations(model: m.Model | None) -> list[Any]:
@@ -70,9 +58,11 @@ class Index:
         references: tuple[tuple[Span, Any], ...],
         sources: dict[str, SourceFile],
         declared: Iterable[Any] = (),
+        errors: Counter[str] | None = None,
     ) -> None:
         self.path = path
         self.references = references
+        self.errors = errors if errors is not None else Counter()  # error code -> how many the check found
         self.texts = {p: source.text for p, source in sources.items()}
         self.lines = {p: text.splitlines() for p, text in self.texts.items()}
         targets = {id(t): t for t in declared}
@@ -92,7 +82,7 @@ class Index:
         for match in NAME.finditer(text, span.start, span.end):
             word = match.group()
             if word.lstrip("^") == name and (word.startswith("^") or name not in KEYWORDS):
-                return _span_of(span.path, text, match.start(), match.end())
+                return Span.of(span.path, text, match.start(), match.end())
         return None
 
     def target_at(self, position: lsp.Position) -> Any:
@@ -140,7 +130,7 @@ class Index:
         target, _ = found
         if WHOLE_NAME.match(new_name) is None:
             raise RenameError(f"'{new_name}' is not a name: a letter or '_', then letters, digits or '_'")
-        text = spelled(new_name.lstrip("^"))
+        text = escape_name(new_name.lstrip("^"))
         declared = self.name_span(target)
         spans = [span for span, t in self.references if t is target]
         if declared is not None:
@@ -162,4 +152,4 @@ class Index:
         found = re.compile(r"\bwith\b[ \t]*").search(text, declared.end, target.span.end)
         if found is None:
             return None
-        return _span_of(declared.path, text, found.end(), found.end()), f'identifier: "{target.name}", '
+        return Span.of(declared.path, text, found.end()), f'identifier: "{target.name}", '

@@ -4,13 +4,14 @@ would have errors the model had not (a name that is taken, say)."""
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from lsprotocol import types as lsp
 from pygls.uris import from_fs_path
 
 from robosc.editor.navigation import Index, RenameError
+from robosc.language.diagnostics import Diagnostic
 from robosc.language.source import Span
 
 
@@ -21,21 +22,20 @@ def apply(text: str, edits: list[tuple[Span, str]]) -> str:
     return text
 
 
-def _errors(text: str, path: str, search_paths: Sequence[Path]) -> tuple[Counter[str], dict[str, str]]:
-    from robosc.api import check_text
-
-    result = check_text(text, path, search_paths)
-    found = [d for d in result.diagnostics if d.is_error]
-    return Counter(d.code.value for d in found), {d.code.value: f"{d.message} (line {d.span.line})" for d in found}
+def error_codes(diagnostics: Iterable[Diagnostic]) -> Counter[str]:
+    """How many errors of each code."""
+    return Counter(d.code.value for d in diagnostics if d.is_error)
 
 
 def renamed(index: Index, edits: dict[str, list[tuple[Span, str]]], search_paths: Sequence[Path]) -> lsp.WorkspaceEdit:
     if set(edits) == {index.path}:  # all in the open model: check what it becomes
-        before, _ = _errors(index.texts[index.path], index.path, search_paths)
-        after, messages = _errors(apply(index.texts[index.path], edits[index.path]), index.path, search_paths)
-        worse = [code for code in after if after[code] > before[code]]
-        if worse:
-            raise RenameError(f"not renamed: the model would not check: {messages[worse[0]]}")
+        from robosc.api import check_text
+
+        result = check_text(apply(index.texts[index.path], edits[index.path]), index.path, search_paths)
+        after = error_codes(result.diagnostics)
+        worse = next((d for d in result.diagnostics if d.is_error and after[d.code.value] > index.errors[d.code.value]), None)
+        if worse is not None:
+            raise RenameError(f"not renamed: the model would not check: {worse.message} (line {worse.span.line})")
     changes = {
         from_fs_path(path) or path: [lsp.TextEdit(range=index.location(span).range, new_text=new) for span, new in found]
         for path, found in edits.items()

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import asyncio
 import functools
-import gc
 import logging
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -23,6 +22,8 @@ from robosc.editor.background import Synthesizer
 from robosc.editor.diagnostics import by_file, code_actions
 from robosc.editor.navigation import Index, RenameError, declarations
 from robosc.editor.outline import folds, outline
+from robosc.editor.rename import error_codes
+from robosc.language.parser import gc_paused
 from robosc.language.reparse import Reparser
 
 DEBOUNCE_SECONDS = 0.02  # a burst of keystrokes is checked once; short against the 100 ms target
@@ -35,7 +36,7 @@ class RoboscServer(LanguageServer):
         self.search_paths = [Path(p) for p in search_paths]
         self.pending: dict[str, asyncio.TimerHandle] = {}
         self.published: dict[str, set[str]] = {}  # document uri -> uris it published diagnostics for
-        self.checked: dict[str, list[Any]] = {}  # uri -> [checked model, synthesis result or None]
+        self.checked: dict[str, list[Any]] = {}  # uri -> [checked model, synthesis's hover notes or None]
         self.indexes: dict[str, Index] = {}  # uri -> the names resolved by its last check
         self.reparsers: dict[str, Reparser] = {}  # uri -> the parses of its definitions
         self.synthesizer = Synthesizer(self.synthesized)
@@ -51,16 +52,15 @@ class RoboscServer(LanguageServer):
         try:
             document = self.workspace.get_text_document(uri)
             reparser = self.reparsers.setdefault(uri, Reparser())
-            paused = gc.isenabled()  # a check makes many objects and no cycles
-            gc.disable()
-            try:
+            with gc_paused():  # resolving and checking too
                 result = check_text(document.source, self.path_of(uri), self.search_paths, reparser)
-            finally:
-                if paused:
-                    gc.enable()
             found = by_file(result)
             self.indexes[uri] = Index(
-                self.path_of(uri), result.references, result.sources, declarations(result.model)
+                self.path_of(uri),
+                result.references,
+                result.sources,
+                declarations(result.model),
+                error_codes(result.diagnostics),
             )
         except Exception:  # never end the server on a model
             log.exception("checking %s failed", uri)
@@ -98,11 +98,11 @@ class RoboscServer(LanguageServer):
 
     def syntax(self, uri: str) -> tuple[Any, list[str]]:
         """The open document's syntax tree (None when it does not parse) and its lines."""
-        from robosc.language.parser import parse_source
         from robosc.language.source import SourceFile
 
         document = self.workspace.get_text_document(uri)
-        parsed = parse_source(SourceFile(self.path_of(uri), document.source))
+        # the document's reparser: what its checks parsed already is not parsed again
+        parsed = self.reparsers.setdefault(uri, Reparser()).parse(SourceFile(self.path_of(uri), document.source))
         return parsed.syntax, document.source.splitlines()
 
     def schedule(self, uri: str) -> None:

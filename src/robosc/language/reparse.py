@@ -8,7 +8,6 @@ reports them)."""
 
 from __future__ import annotations
 
-import gc
 import itertools
 import re
 import threading
@@ -19,7 +18,7 @@ from typing import Any
 from lark import Lark, Token, Tree, UnexpectedInput
 
 from robosc.language import syntax as s
-from robosc.language.parser import ParseResult, grammar_parser, parse_source
+from robosc.language.parser import ParseResult, gc_paused, grammar_parser, parse_source
 from robosc.language.source import SourceFile, Span
 from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
 
@@ -79,13 +78,8 @@ class Reparser:
         self._built: dict[tuple[str, str, str, int, int], tuple[Any, list[s.Comment]]] = {}
 
     def parse(self, source: SourceFile) -> ParseResult:
-        paused = gc.isenabled()  # as parse_text: many short-lived objects, no cycles
-        gc.disable()
-        try:
+        with gc_paused():
             return self._parse_or_whole(source)
-        finally:
-            if paused:
-                gc.enable()
 
     def _parse_or_whole(self, source: SourceFile) -> ParseResult:
         text = source.text

@@ -22,6 +22,17 @@ class Span(NamedTuple):
     def __str__(self) -> str:
         return f"{self.path}:{self.line}:{self.column}"
 
+    @classmethod
+    def of(cls, path: str, text: str, start: int, end: int | None = None) -> Span:
+        """The span of ``text[start:end]`` (empty without ``end``), lines and columns counted."""
+        stop = start if end is None else end
+
+        def line_column(offset: int) -> tuple[int, int]:
+            return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
+
+        (line, column), (end_line, end_column) = line_column(start), line_column(stop)
+        return cls(path, line, column, end_line, end_column, start, stop)
+
     def __repr__(self) -> str:
         return (
             f"Span(path={self.path!r}, line={self.line}, column={self.column}, end_line={self.end_line}, "

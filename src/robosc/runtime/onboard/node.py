@@ -206,6 +206,16 @@ class NodeCore(object):
                 if kind in events:
                     self.route[events[kind].name] = call
 
+    def start_outputs(self, robot_class: Any, clock: Callable[[], float], create: Callable[[], None]) -> None:
+        """The node's outputs around the adapter's ``create`` (its publishers, subscribers,
+        services and actions): the live view and the event log first, before anything can
+        deliver an event, the view topics' page and state once their publishers exist."""
+        page = self.view_page(robot_class)
+        self.live_view = self.open_live_view(page)
+        self.start_recording(self.live_view.publish if self.live_view is not None else None, clock)
+        create()
+        self.start_view_topics(page)
+
     def start_recording(
         self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
     ) -> None:

@@ -54,11 +54,7 @@ class SupervisorNode(NodeCore):
         self.setup(robot_class, mode, given, _log)
         self.lock = self.supervisor.lock
         self._load_types()
-        page = self.view_page(robot_class)
-        self.live_view = self.open_live_view(page)  # before anything can deliver an event
-        self.start_recording(self.live_view.publish if self.live_view is not None else None, rospy.get_time)
-        self._create()
-        self.start_view_topics(page)
+        self.start_outputs(robot_class, rospy.get_time, self._create)
         self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
 
     def _load_types(self) -> None:

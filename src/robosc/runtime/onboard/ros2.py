@@ -68,11 +68,7 @@ class SupervisorNode(Node, NodeCore):
         self.lock = self.supervisor.lock
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
-        page = self.view_page(robot_class)
-        self.live_view = self.open_live_view(page)  # before anything can deliver an event
-        self.start_recording(self.live_view.publish if self.live_view is not None else None, self._now)
-        self._create()
-        self.start_view_topics(page)
+        self.start_outputs(robot_class, self._now, self._create)
         self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
 
     # ---- set-up ----------------------------------------------------------------------------
