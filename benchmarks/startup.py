@@ -23,6 +23,13 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=15)
     parser.add_argument("--example", default=str(ROOT / "examples" / "line_follower.rscd"))
     args = parser.parse_args()
+    # as after an install: every module compiled to bytecode (a module edited since its last
+    # compile would be compiled again on every start where writing bytecode is off)
+    import compileall
+
+    import robosc
+
+    compileall.compile_dir(Path(robosc.__file__).parent, quiet=1)
     runs = {
         "python (nothing imported)": [sys.executable, "-c", "pass"],
         "import lark": [sys.executable, "-c", "import lark"],

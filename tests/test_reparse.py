@@ -85,9 +85,8 @@ def test_an_edit_parses_only_the_definition_it_touched(monkeypatch) -> None:
     _, starts = cut(text) or (0, [])
     assert len(starts) > 20
     parsed: list[str] = []
-    parser = reparse._piece_parser()
-    original = parser.parse
-    monkeypatch.setattr(parser, "parse", lambda piece, start: parsed.append(piece) or original(piece, start))
+    original = reparse.parse
+    monkeypatch.setattr(reparse, "parse", lambda tables, piece, *rest: parsed.append(piece) or original(tables, piece, *rest))
     reparser = Reparser()
     reparser.parse(SourceFile("/m/g.rscd", text))
     assert len(parsed) == len(starts)  # each definition once

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import click
@@ -96,15 +95,12 @@ def generate(file: str, ros: str, mode: str, output: str, relative_names: bool, 
 def build(file: str, output: str, mode: str, relative_names: bool, include: tuple[str, ...]) -> None:
     """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
     stand-alone supervisor module (with the runtime it needs) and the CIF file."""
-    from rich.console import Console
-
     from robosc.codegen.cif import to_cif
     from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
 
     result, plan = supervised(file, include, "a build")
     out = Path(output)
-    console = Console(highlight=False, width=200 if not sys.stdout.isatty() else None)
-    console.print(
+    click.echo(
         f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "
         f"{result.reachable_states:,} reachable states, {len(result.added_guards)} added guards"
     )
@@ -112,17 +108,17 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
     for ros in (1, 2):
         target = out / f"ros{ros}"
         written = _write_package(plan, ros, mode, target, file, include, page, relative_names)
-        console.print(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
+        click.echo(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
     try:
         module = out / f"{module_name(plan)}.py"
         module.write_text(render_module(plan, relative_names), encoding="utf-8")
         (out / RUNTIME_PACKAGE).mkdir(exist_ok=True)
         for name, text in runtime_files().items():
             (out / RUNTIME_PACKAGE / name).write_text(text, encoding="utf-8")
-        console.print(f"  stand-alone supervisor: {module} (runtime: {out / RUNTIME_PACKAGE})")
+        click.echo(f"  stand-alone supervisor: {module} (runtime: {out / RUNTIME_PACKAGE})")
         cif_path = out / f"{plan.robot}.cif"
         cif_path.write_text(to_cif(result.network, Path(file).name), encoding="utf-8")
-        console.print(f"  CIF: {cif_path}")
+        click.echo(f"  CIF: {cif_path}")
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
     raise exit_with(EXIT_OK)

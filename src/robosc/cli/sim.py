@@ -157,13 +157,10 @@ def _check_middleware(ros: int) -> None:
 
 
 def _print(report: Report, ros: str) -> None:
-    from rich.console import Console
-    from rich.table import Table
+    from robosc.cli.table import boxed, terminal_width
 
-    console = Console(highlight=False)
-    table = Table(title_justify="left", title=f"{len(report.robots)} robot(s), ROS: {ros}")
-    for column in ("robot", "time to goal", "distance", "closest approach", "commands", "refused"):
-        table.add_column(column, justify="left" if column == "robot" else "right")
+    headers = ("robot", "time to goal", "distance", "closest approach", "commands", "refused")
+    rows = []
     for r in report.robots:
         if r.reached is not None:
             goal = f"{r.reached:.1f} s"
@@ -171,7 +168,8 @@ def _print(report: Report, ros: str) -> None:
             goal = f"hit at {r.collided_at:.1f} s"
         else:
             goal = "not reached"
-        table.add_row(r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused))
-    console.print(table)
+        rows.append((r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused)))
+    title = f"{len(report.robots)} robot(s), ROS: {ros}"
+    click.echo(boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width()))
     verdict = "ok" if report.ok else "FAILED"
-    console.print(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")
+    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import random
-import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TextIO
 
@@ -207,22 +206,16 @@ def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool, rate: flo
 
 
 def _show_state(sim: Simulator) -> None:
-    from rich.console import Console
-    from rich.table import Table
+    from robosc.cli.table import listing
 
     snapshot = sim.snapshot()
-    table = Table("automaton / variable", "value", box=None, pad_edge=False)
-    for name, location in snapshot["automata"].items():
-        table.add_row(name, location)
-    for name, location in snapshot["communications"].items():
-        if location != "idle":  # a service or action that is busy
-            table.add_row(name, location)
-    for name, value in snapshot["variables"].items():
-        table.add_row(name, str(value))
-    console = Console(width=200 if not sys.stdout.isatty() else None)
-    console.print(table)
-    console.print("allowed: " + (", ".join(sim.allowed()) or "(none)"), markup=False)
-    console.print("robot events possible: " + (", ".join(sim.expected()) or "(none)"), markup=False)
+    rows = list(snapshot["automata"].items())
+    # a service or action that is busy
+    rows += [(name, location) for name, location in snapshot["communications"].items() if location != "idle"]
+    rows += [(name, str(value)) for name, value in snapshot["variables"].items()]
+    click.echo(listing(("automaton / variable", "value"), rows))
+    click.echo("allowed: " + (", ".join(sim.allowed()) or "(none)"))
+    click.echo("robot events possible: " + (", ".join(sim.expected()) or "(none)"))
 
 
 def _interactive(sim: Simulator) -> int:

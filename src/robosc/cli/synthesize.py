@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import contextlib
-import json
 from typing import Any
 
 import click
 
 from robosc.api import SynthesisResult, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot
+from robosc.cli.table import Cell, boxed, terminal_width
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
@@ -38,6 +38,8 @@ def _why(restriction: Restriction | None) -> dict[str, Any] | None:
 
 
 def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -> dict[str, Any]:
+    import json
+
     explanation = result.explanation
     return {
         "model": result.network.model.name,
@@ -73,44 +75,38 @@ def print_warnings(warnings: list[Diagnostic]) -> None:
 
 
 def print_result(result: SynthesisResult) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
-    console = Console(highlight=False)
-    if not console.is_terminal:
-        # Piped to a file or another program: no terminal width to respect, so keep
-        # each condition on one line instead of wrapping it at 80 columns.
-        console = Console(highlight=False, width=max(console.width, 200))
+    # piped to a file or another program: no terminal width to respect, so each condition
+    # stays on one line
+    width = terminal_width()
     name = result.network.model.name
     if not result.ok:
         explanation = result.explanation
         assert explanation is not None
-        console.print(f"[bold red]synthesis failed[/] for {name}: no supervisor can keep the requirements")
-        console.print(f"  initial state: {explanation.initial_state}", markup=False)
+        failed = click.style("synthesis failed", fg="red", bold=True)
+        click.echo(f"{failed} for {name}: no supervisor can keep the requirements")
+        click.echo(f"  initial state: {explanation.initial_state}")
         if explanation.path:
-            console.print("  uncontrollable events from the initial state:")
+            click.echo("  uncontrollable events from the initial state:")
             for number, step in enumerate(explanation.path, 1):
-                console.print(f"    {number}. {step.event.name}  ->  {step.state}", markup=False)
+                click.echo(f"    {number}. {step.event.name}  ->  {step.state}")
         else:
-            console.print("  (the problem is already in the initial state)")
-        console.print(f"  why: {explanation.reason}", markup=False)
+            click.echo("  (the problem is already in the initial state)")
+        click.echo(f"  why: {explanation.reason}")
         return
-    table = Table(title=f"supervisor for {name}", title_justify="left")
-    table.add_column("controllable event", no_wrap=True)
-    table.add_column("your condition")
-    table.add_column("added by synthesis")
+    rows = []
     for guard in result.guards:
         required = render(guard.required) if guard.required is not None else "-"
-        added = render(guard.added) if guard.added is not None else "-"
-        table.add_row(guard.event.name, required, f"[bold]{added}[/]" if guard.added is not None else added)
-    console.print(table)
+        added = Cell(render(guard.added)) if guard.added is not None else "-"
+        rows.append((guard.event.name, required, added))
+    headers = ("controllable event", "your condition", "added by synthesis")
+    click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=width))
     restrictions = [r for r in (result.why(g.event) for g in result.added_guards) if r is not None]
     if restrictions:
-        console.print("why synthesis added these conditions:")
+        click.echo("why synthesis added these conditions:")
         for restriction in restrictions:
             for line in why_lines(restriction):
-                console.print("  " + line, markup=False, soft_wrap=True)
-    console.print(
+                click.echo("  " + line)
+    click.echo(
         f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled system; "
         f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
         f"{result.seconds * 1000:.1f} ms"
@@ -133,6 +129,8 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
         click.echo()
     warnings = synthesis_warnings(result)
     if as_json_output:
+        import json
+
         click.echo(json.dumps(as_json(result, warnings), indent=2))
     else:
         print_result(result)

@@ -4,33 +4,19 @@ from __future__ import annotations
 
 import gc
 import re
-import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from functools import lru_cache
-from pathlib import Path
-from typing import Any
-
-import lark
-from lark import Lark, Token, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
-
-from robosc.record import record
-
-if lark.__version__.startswith("0."):  # pragma: no cover - an environment problem, not a model problem
-    raise ImportError(
-        f"robosc needs lark 1.x, but lark {lark.__version__} is installed (lark-parser, pulled in by ROS 2's "
-        "rosidl-parser, writes over it): run  pip install --force-reinstall --no-deps 'lark>=1.1.9'"
-    )
 
 from robosc.language import syntax as s
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, error
+from robosc.language.lalr import Tables, Token, UnexpectedCharacters, UnexpectedInput, UnexpectedToken, parse
 from robosc.language.source import SourceFile, Span
 from robosc.language.transformer import MAX_STRING, SyntaxBuilder, SyntaxProblem
+from robosc.record import record
 
-GRAMMAR = Path(__file__).with_name("grammar.lark")
-
-# What the user typed, for the terminals Lark names by pattern.
+# What the user typed, for the terminals named by pattern.
 _TERMINAL_TEXT = {
     "NAME": "a name",
     "INT": "an integer",
@@ -48,52 +34,22 @@ class ParseResult:
     diagnostics: tuple[Diagnostic, ...]
 
 
-class _CommentCollector:
-    """Lexer callback keeping the comments that the grammar ignores (for ``robosc fmt``)."""
-
-    def __init__(self) -> None:
-        self.tokens: list[Token] = []
-
-    def __call__(self, token: Token) -> Token:
-        self.tokens.append(token)
-        return token
-
-
-_lock = threading.Lock()
-_collector = _CommentCollector()
-
-
-def grammar_parser(collect: Callable[[Token], Any], start: str | list[str] = "start") -> Lark:
-    """Lark's LALR parser of the grammar (its tables cached on disk), passing each comment
-    token to ``collect``."""
-    return Lark(
-        GRAMMAR.read_text(encoding="utf-8"),
-        parser="lalr",
-        lexer="basic",
-        propagate_positions=True,
-        maybe_placeholders=False,
-        cache=True,
-        start=start,
-        lexer_callbacks={"LINE_COMMENT": collect, "BLOCK_COMMENT": collect},
-    )
-
-
 @lru_cache(maxsize=1)
-def _lark() -> Lark:
-    return grammar_parser(_collector)
+def file_tables() -> Tables:
+    """The tables that parse a whole file (loaded on first use)."""
+    from robosc.language.grammar_tables import FILE
+
+    return Tables(FILE)
 
 
-def _describe_terminal(name: str, parser: Lark) -> str:
+def _describe_terminal(name: str, tables: Tables) -> str:
     if name in _TERMINAL_TEXT:
         return _TERMINAL_TEXT[name]
-    try:
-        pattern = parser.get_terminal(name).pattern
-    except KeyError:
-        return name.lower()
-    return f"'{pattern.value}'" if pattern.type == "str" else name.lower()
+    literal = tables.literals.get(name)
+    return f"'{literal}'" if literal is not None else name.lower()
 
 
-def _describe_expected(expected: set[str], parser: Lark) -> str:
+def _describe_expected(expected: set[str], tables: Tables) -> str:
     names = set(expected)
     parts: list[str] = []
     if names >= _EXPRESSION_STARTS:
@@ -102,21 +58,10 @@ def _describe_expected(expected: set[str], parser: Lark) -> str:
     if len(_OPERATORS & names) > 3:
         names -= _OPERATORS
         parts.append("an operator")
-    parts += sorted(_describe_terminal(n, parser) for n in names)
+    parts += sorted(_describe_terminal(n, tables) for n in names)
     if len(parts) > 8:
         parts = [*parts[:8], "..."]
     return parts[0] if len(parts) == 1 else "one of " + ", ".join(parts)
-
-
-def _acceptable(exc: UnexpectedInput) -> set[str]:
-    """The tokens the parser could take at the failure, as exactly as Lark can tell."""
-    interactive = getattr(exc, "interactive_parser", None)
-    if interactive is not None:
-        try:
-            return set(interactive.accepts())
-        except Exception:
-            pass
-    return set(getattr(exc, "expected", None) or ())
 
 
 def _point(path: str, text: str, line: int, column: int, pos: int, length: int = 1) -> Span:
@@ -154,14 +99,14 @@ def spelling_hint(text: str, pos: int) -> str | None:
     return None
 
 
-def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> Diagnostic:
-    if (isinstance(exc, UnexpectedToken) and exc.token.type == "$END") or isinstance(exc, UnexpectedEOF):
+def _syntax_error(exc: UnexpectedInput, path: str, text: str, tables: Tables) -> Diagnostic:
+    if isinstance(exc, UnexpectedToken) and exc.token.type == "$END":
         lines = text.splitlines() or [""]
         line, column = len(lines), len(lines[-1]) + 1
-        expected = _acceptable(exc)
+        expected = exc.accepts()
         message = "unexpected end of file"
         if expected:
-            message += f", expected {_describe_expected(set(expected), parser)}"
+            message += f", expected {_describe_expected(set(expected), tables)}"
         return error(_point(path, text, line, column, len(text), 0), message, Code.SYNTAX)
     if isinstance(exc, UnexpectedToken):
         token = exc.token
@@ -171,7 +116,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
         span = _point(path, text, exc.line, exc.column, token.start_pos or 0, max(1, len(str(token))))
         if text.startswith("/*", token.start_pos or 0):
             return error(span, "unterminated comment (missing '*/')", Code.SYNTAX)
-        if token.type in parser.lexer_conf.terminals_by_name and token.type != "NAME":
+        if token.type != "NAME":
             what = f"'{shown}'"
             hint = (
                 f"'{shown}' is a keyword; write '^{shown}' to use it as a name"
@@ -182,7 +127,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
             what, hint = f"'{shown}'", None
         hint = hint or spelling_hint(text, token.start_pos or 0)
         return error(
-            span, f"unexpected {what}, expected {_describe_expected(_acceptable(exc), parser)}", Code.SYNTAX, hint
+            span, f"unexpected {what}, expected {_describe_expected(exc.accepts(), tables)}", Code.SYNTAX, hint
         )
     assert isinstance(exc, UnexpectedCharacters)
     pos = exc.pos_in_stream or 0
@@ -195,7 +140,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, parser: Lark) -> D
     shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
     message = f"unexpected character {shown}"
     if exc.allowed:
-        message += f", expected {_describe_expected(set(exc.allowed), parser)}"
+        message += f", expected {_describe_expected(set(exc.allowed), tables)}"
     return error(span, message, Code.SYNTAX, spelling_hint(text, pos))
 
 
@@ -223,17 +168,15 @@ _LONG_STRING = re.compile(f"\"[^\"\\n]{{{MAX_STRING + 1},}}|'[^'\\n]{{{MAX_STRIN
 
 def _parse(text: str, path: str) -> ParseResult:
     long = _LONG_STRING.search(text)
-    if long is not None:  # before Lark, whose string pattern needs memory in proportion to the string
+    if long is not None:  # before the lexer, whose string pattern needs memory in proportion to the string
         span = Span.of(path, text, long.start(), long.start() + 1)
         return ParseResult(None, (error(span, f"string too long (more than {MAX_STRING} characters)", Code.LIMIT),))
-    parser = _lark()
-    with _lock:
-        _collector.tokens = []
-        try:
-            tree = parser.parse(text)
-        except UnexpectedInput as exc:
-            return ParseResult(None, (_syntax_error(exc, path, text, parser),))
-        comment_tokens = _collector.tokens
+    tables = file_tables()
+    comment_tokens: list[Token] = []
+    try:
+        tree = parse(tables, text, "start", comment_tokens)
+    except UnexpectedInput as exc:
+        return ParseResult(None, (_syntax_error(exc, path, text, tables),))
     builder = SyntaxBuilder(path, ())
     comments = tuple(s.Comment(str(t), builder.token_span(t)) for t in comment_tokens)
     builder.comments = comments

@@ -10,15 +10,13 @@ from __future__ import annotations
 
 import itertools
 import re
-import threading
 from collections import OrderedDict
 from functools import lru_cache
 from typing import Any
 
-from lark import Lark, Token, Tree, UnexpectedInput
-
 from robosc.language import syntax as s
-from robosc.language.parser import ParseResult, gc_paused, grammar_parser, parse_source
+from robosc.language.lalr import Tables, Token, Tree, UnexpectedInput, parse
+from robosc.language.parser import ParseResult, gc_paused, parse_source
 from robosc.language.source import SourceFile, Span
 from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
 
@@ -35,13 +33,11 @@ _BLANK = re.compile(r"[^\n]")
 MIN_PIECES = 8  # below this, parsing the whole file is as quick
 
 
-_comments: list[Token] = []  # the comments of the piece being parsed (under _lock)
-_lock = threading.Lock()
-
-
 @lru_cache(maxsize=1)
-def _piece_parser() -> Lark:
-    return grammar_parser(_comments.append, start=["robot_def", "library_def"])
+def _piece_tables() -> Tables:
+    from robosc.language.grammar_tables import PIECES
+
+    return Tables(PIECES)
 
 
 def cut(text: str) -> tuple[int, list[int]] | None:
@@ -72,7 +68,7 @@ class Reparser:
 
     def __init__(self, capacity: int = 20_000) -> None:
         self.capacity = capacity
-        self._pieces: OrderedDict[tuple[str, str], tuple[Tree[Token], tuple[Token, ...]]] = OrderedDict()
+        self._pieces: OrderedDict[tuple[str, str], tuple[Tree, tuple[Token, ...]]] = OrderedDict()
         # the syntax each piece was last built into, by (text, rule, path, line, offset): the
         # pieces before an edit keep their place and need not be built again
         self._built: dict[tuple[str, str, str, int, int], tuple[Any, list[s.Comment]]] = {}
@@ -92,16 +88,15 @@ class Reparser:
         except (UnexpectedInput, SyntaxProblem, _Whole):
             return parse_source(source)
 
-    def _piece(self, text: str, start: str) -> tuple[Tree[Token], tuple[Token, ...]]:
+    def _piece(self, text: str, start: str) -> tuple[Tree, tuple[Token, ...]]:
         key = (text, start)
         kept = self._pieces.get(key)
         if kept is not None:
             self._pieces.move_to_end(key)
             return kept
-        with _lock:
-            _comments.clear()
-            tree = _piece_parser().parse(text, start=start)
-            kept = (tree, tuple(_comments))
+        comments: list[Token] = []
+        tree = parse(_piece_tables(), text, start, comments)
+        kept = (tree, tuple(comments))
         self._pieces[key] = kept
         if len(self._pieces) > self.capacity:
             self._pieces.popitem(last=False)

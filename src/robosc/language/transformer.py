@@ -1,4 +1,4 @@
-"""Turns Lark's parse tree into :mod:`robosc.language.syntax` nodes.
+"""Turns the parse tree into :mod:`robosc.language.syntax` nodes.
 
 The grammar (``grammar.lark``) says what is valid; this module only builds
 nodes from it. One method per grammar rule or alias.
@@ -9,12 +9,10 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from lark import Token, Tree
-from lark.tree import Meta
-
 from robosc.language import syntax as s
 from robosc.language.codes import Code
 from robosc.language.keywords import KEYWORDS
+from robosc.language.lalr import Meta, Token, Tree
 from robosc.language.source import Span
 
 MAX_INT = 2**63 - 1
@@ -52,7 +50,7 @@ class SyntaxBuilder:
         self._depth: dict[int, int] = {}
         self._chain: dict[int, int] = {}
 
-    def build(self, tree: Tree[Token]) -> s.FileSyntax:
+    def build(self, tree: Tree) -> s.FileSyntax:
         """Build bottom-up without recursion (no depth limit from Python's stack)."""
         built: dict[int, Any] = {}
         methods: dict[str, Any] = {}
