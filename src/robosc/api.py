@@ -17,12 +17,12 @@ from robosc.language.diagnostics import Diagnostic, render_text, sort_key
 from robosc.language.loader import InputError, LibraryFinder, read_source
 from robosc.language.model import Model
 from robosc.language.parser import parse_source
-from robosc.language.reparse import Reparser
 from robosc.language.resolver import resolve
 from robosc.language.source import SourceFile
 from robosc.record import field, record
 
 if TYPE_CHECKING:
+    from robosc.language.reparse import Reparser
     from robosc.runtime.plan import Plan
     from robosc.runtime.simulator import Simulator
     from robosc.sim.run import Report
