@@ -127,6 +127,37 @@ def report(label: str, times: list[float], target: float) -> None:
     )
 
 
+def parse_side_by_side(text: str, repeat: int) -> None:
+    """Parsing alone: Lark (when installed) and robosc's runner of the tables Lark made."""
+    import gc
+
+    from robosc.language import lalr
+    from robosc.language.grammar_compile import GRAMMAR
+    from robosc.language.parser import file_tables
+
+    try:
+        import lark
+    except ImportError:
+        return
+    keep = {"LINE_COMMENT": lambda t: t, "BLOCK_COMMENT": lambda t: t}
+    by_lark = lark.Lark(
+        GRAMMAR.read_text(), parser="lalr", lexer="basic", propagate_positions=True, maybe_placeholders=False, lexer_callbacks=keep
+    )
+    tables = file_tables()
+    times: dict[str, list[float]] = {"Lark": [], "robosc.language.lalr": []}
+    gc.disable()
+    for _ in range(repeat):  # interleaved
+        start = time.perf_counter()
+        by_lark.parse(text)
+        times["Lark"].append(time.perf_counter() - start)
+        start = time.perf_counter()
+        lalr.parse(tables, text, "start", [])
+        times["robosc.language.lalr"].append(time.perf_counter() - start)
+    gc.enable()
+    shown = ", ".join(f"{name} {statistics.median(t) * 1000:.0f} ms" for name, t in times.items())
+    print(f"parse alone, same text, medians of {repeat}: {shown}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--lines", type=int, default=5000)
@@ -137,6 +168,7 @@ def main() -> None:
     print(f"generated model: {n_lines} lines, {len(text)} characters")
     report(f"load + check, {n_lines}-line model (in process)", time_in_process(text, args.repeat), 1.0)
     report("robosc check examples/maze_solver.rscd (process start included)", time_cli(args.repeat), 0.5)
+    parse_side_by_side(text, args.repeat)
 
 
 if __name__ == "__main__":
