@@ -4,7 +4,7 @@
 
 from typing import Any
 
-GRAMMAR_SHA256 = '3861c72da38cf51a027b1c6c1ef0d2378a7ccd7465087d69498139f199237002'
+GRAMMAR_SHA256 = 'd494a0298cf0ae59f9a8d142c2a5c853fbe62a8d0bd308467fc6b558ca1dd7ee'
 
 FILE: dict[str, Any] = {
     'terminals': (('_IDENTIFIER_COLON', 'identifier:'), ('_FEEDBACK_COLON', 'feedback:'), ('_RESPONSE_COLON', 'response:'), ('_REQUEST_COLON', 'request:'), ('_TYPE_COLON', 'type:'), ('DOUBLE', '[0-9]+\\.[0-9]+'), ('STRING', '(?:(?s:"(?:[^"\\\\]|\\\\.)*")|(?s:\'(?:[^\'\\\\]|\\\\.)*\'))'), ('NAME', '\\^?[A-Za-z_][A-Za-z0-9_]*'), ('BLOCK_COMMENT', '\\/\\*(.|\n)*?\\*\\/'), ('LINE_COMMENT', '\\/\\/[^\n]*'), ('WS', '[ \t\r\n\x0c]+'), ('INT', '[0-9]+'), ('GE', '>='), ('IMPLIES', '=>'), ('LE', '<='), ('NE', '!='), ('__ANON_0', ':='), ('__ANON_3', '\\.\\.'), ('__ANON_4', '\\->'), ('BANG', '!'), ('COLON', ':'), ('COMMA', ','), ('DIVIDE', '/'), ('DOT', '\\.'), ('EQ', '='), ('GT', '>'), ('LBRACE', '\\{'), ('LPAR', '\\('), ('LSQB', '\\['), ('LT', '<'), ('MINUS', '\\-'), ('PLUS', '\\+'), ('RBRACE', '\\}'), ('RPAR', '\\)'), ('RSQB', '\\]'), ('TIMES', '\\*')),

@@ -6,7 +6,8 @@ Lark stays the grammar's compiler; running its tables here spares every command 
 import and grammar loading (most of ``robosc check``'s start-up). Trees, tokens, positions
 and errors mean what Lark's mean with ``parser="lalr", lexer="basic",
 propagate_positions=True``: the same tree shapes, the same first error and the same
-expected tokens (checked against Lark by the tests).
+expected tokens (checked against Lark by the tests). The tree building, the subtree order
+and ``accepts`` follow Lark's code (MIT licence, lark-parser/lark).
 """
 
 from __future__ import annotations
