@@ -11,7 +11,6 @@ Lark is needed here only, at development time: parsing a model does not import i
 
 from __future__ import annotations
 
-import hashlib
 import sys
 from pathlib import Path
 from typing import Any
@@ -21,10 +20,6 @@ TABLES = Path(__file__).with_name("grammar_tables.py")
 # the tables, by the start symbols they parse from: a whole file, and (for the language
 # server's reparsing) one definition of a robot or a library alone
 STARTS = {"FILE": ["start"], "PIECES": ["robot_def", "library_def"]}
-
-
-def grammar_hash(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def compile_tables(grammar: str, starts: list[str]) -> dict[str, Any]:
@@ -123,8 +118,6 @@ def render(grammar: str) -> str:
         '"""The parse tables of grammar.lark, run by :mod:`robosc.language.lalr`."""',
         "",
         "from typing import Any",
-        "",
-        f"GRAMMAR_SHA256 = {grammar_hash(grammar)!r}",
     ]
     for name, starts in STARTS.items():
         lines += ["", *_write_tables(name, compile_tables(grammar, starts))]

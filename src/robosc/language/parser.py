@@ -106,31 +106,25 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, tables: Tables) ->
         expected = exc.accepts()
         message = "unexpected end of file"
         if expected:
-            message += f", expected {_describe_expected(set(expected), tables)}"
+            message += f", expected {_describe_expected(expected, tables)}"
         return error(_point(path, text, line, column, len(text), 0), message, Code.SYNTAX)
     if isinstance(exc, UnexpectedToken):
         token = exc.token
         shown = str(token).replace("\n", " ")
         if len(shown) > 30:
             shown = shown[:27] + "..."
-        span = _point(path, text, exc.line, exc.column, token.start_pos or 0, max(1, len(str(token))))
-        if text.startswith("/*", token.start_pos or 0):
+        span = _point(path, text, exc.line, exc.column, token.start_pos, max(1, len(str(token))))
+        if text.startswith("/*", token.start_pos):
             return error(span, "unterminated comment (missing '*/')", Code.SYNTAX)
-        if token.type != "NAME":
-            what = f"'{shown}'"
-            hint = (
-                f"'{shown}' is a keyword; write '^{shown}' to use it as a name"
-                if shown.isidentifier() and "NAME" in exc.expected
-                else None
-            )
-        else:
-            what, hint = f"'{shown}'", None
-        hint = hint or spelling_hint(text, token.start_pos or 0)
+        hint = None
+        if token.type != "NAME" and shown.isidentifier() and "NAME" in exc.expected:
+            hint = f"'{shown}' is a keyword; write '^{shown}' to use it as a name"
+        hint = hint or spelling_hint(text, token.start_pos)
         return error(
-            span, f"unexpected {what}, expected {_describe_expected(exc.accepts(), tables)}", Code.SYNTAX, hint
+            span, f"unexpected '{shown}', expected {_describe_expected(exc.accepts(), tables)}", Code.SYNTAX, hint
         )
     assert isinstance(exc, UnexpectedCharacters)
-    pos = exc.pos_in_stream or 0
+    pos = exc.pos_in_stream
     char = text[pos] if pos < len(text) else ""
     span = _point(path, text, exc.line, exc.column, pos)
     if char in "\"'":
@@ -140,7 +134,7 @@ def _syntax_error(exc: UnexpectedInput, path: str, text: str, tables: Tables) ->
     shown = repr(char) if not char.isprintable() or char.isspace() else f"'{char}'"
     message = f"unexpected character {shown}"
     if exc.allowed:
-        message += f", expected {_describe_expected(set(exc.allowed), tables)}"
+        message += f", expected {_describe_expected(exc.allowed, tables)}"
     return error(span, message, Code.SYNTAX, spelling_hint(text, pos))
 
 

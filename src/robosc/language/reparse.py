@@ -17,7 +17,7 @@ from typing import Any
 from robosc.language import syntax as s
 from robosc.language.lalr import Tables, Token, Tree, UnexpectedInput, parse
 from robosc.language.parser import ParseResult, gc_paused, parse_source
-from robosc.language.source import SourceFile, Span
+from robosc.language.source import SourceFile
 from robosc.language.transformer import SyntaxBuilder, SyntaxProblem
 
 _STARTS = ("component", "requirement", "provide", "datatype", "interface")
@@ -124,7 +124,7 @@ class Reparser:
             done = self._built.get(key)
             if done is None:
                 tree, tokens = self._piece(piece, rule)
-                builder = _PlacedBuilder(path, line - 1, piece_start)
+                builder = SyntaxBuilder(path, (), line - 1, piece_start)
                 done = (builder.build(tree), [s.Comment(str(t), builder.token_span(t)) for t in tokens])
             built[key] = done
             definitions.append(done[0])
@@ -138,35 +138,3 @@ class Reparser:
 
 class _Whole(Exception):
     """Parse the whole file instead."""
-
-
-class _PlacedBuilder(SyntaxBuilder):
-    """Builds one definition parsed alone, at its line and offset in the file."""
-
-    def __init__(self, path: str, lines: int, offset: int) -> None:
-        super().__init__(path, ())
-        self.lines, self.offset = lines, offset
-
-    def _span(self, meta: Any) -> Span:
-        if getattr(meta, "empty", True):
-            return s.NO_SPAN
-        return Span(
-            self.path,
-            meta.line + self.lines,
-            meta.column,
-            meta.end_line + self.lines,
-            meta.end_column,
-            meta.start_pos + self.offset,
-            meta.end_pos + self.offset,
-        )
-
-    def token_span(self, token: Token) -> Span:
-        return Span(
-            self.path,
-            (token.line or 0) + self.lines,
-            token.column or 0,
-            (token.end_line or 0) + self.lines,
-            token.end_column or 0,
-            (token.start_pos or 0) + self.offset,
-            (token.end_pos or 0) + self.offset,
-        )

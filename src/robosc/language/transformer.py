@@ -42,11 +42,13 @@ def _unescape_string(raw: str) -> str:
 
 
 class SyntaxBuilder:
-    """One method per rule or alias, called with the node's position and its built children."""
+    """One method per rule or alias, called with the node's position and its built children.
+    ``lines`` and ``offset`` place a text parsed alone (one definition) in its file."""
 
-    def __init__(self, path: str, comments: tuple[s.Comment, ...]) -> None:
+    def __init__(self, path: str, comments: tuple[s.Comment, ...], lines: int = 0, offset: int = 0) -> None:
         self.path = path
         self.comments = comments
+        self.lines, self.offset = lines, offset
         self._depth: dict[int, int] = {}
         self._chain: dict[int, int] = {}
 
@@ -66,19 +68,29 @@ class SyntaxBuilder:
 
     # -- helpers -------------------------------------------------------------
     def _span(self, meta: Meta) -> Span:
-        if getattr(meta, "empty", True):
+        if meta.empty:
             return s.NO_SPAN
-        return Span(self.path, meta.line, meta.column, meta.end_line, meta.end_column, meta.start_pos, meta.end_pos)
-
-    def token_span(self, token: Token) -> Span:
+        lines, offset = self.lines, self.offset
         return Span(
             self.path,
-            token.line or 0,
-            token.column or 0,
-            token.end_line or 0,
-            token.end_column or 0,
-            token.start_pos or 0,
-            token.end_pos or 0,
+            meta.line + lines,
+            meta.column,
+            meta.end_line + lines,
+            meta.end_column,
+            meta.start_pos + offset,
+            meta.end_pos + offset,
+        )
+
+    def token_span(self, token: Token) -> Span:
+        lines, offset = self.lines, self.offset
+        return Span(
+            self.path,
+            token.line + lines,
+            token.column,
+            token.end_line + lines,
+            token.end_column,
+            token.start_pos + offset,
+            token.end_pos + offset,
         )
 
     def _expr(self, node: s.Expr, *children: Any) -> s.Expr:
