@@ -10,6 +10,13 @@ from robosc.api import CheckResult, check_file
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
+@pytest.fixture(autouse=True)
+def _ros_home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every test has a ROS home of its own: the nodes it starts persist their state there
+    (never in the user's ~/.ros), and no test resumes another's."""
+    monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
+
+
 def codes(result: CheckResult) -> list[str]:
     return [d.code for d in result.diagnostics]
 

@@ -35,6 +35,7 @@ RUNTIME = {
     "messages.py",
     "node.py",
     "recording.py",
+    "persist.py",
     "ros1.py",
     "ros2.py",
     "supervisor.py",

@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
-from robosc.runtime.onboard.messages import Unsendable, candidates, fill, matches, wire_type
+from robosc.runtime.onboard.messages import Unsendable, conforms, fill, wire_type
 from robosc.runtime.onboard.node import PARAMETERS, NodeCore, controller_side
 from robosc.runtime.onboard.recording import EventLog
 from robosc.runtime.onboard.supervisor import Communication, Warnings
@@ -63,6 +63,8 @@ class FakeNode(NodeCore):
     """Middleware that records what the node would put on the wire."""
 
     def __init__(self, model: str, mode: str, **params: Any) -> None:
+        """A node of ``model``; it persists and resumes its state only when ``resume`` is given."""
+        params.setdefault("resume", False)
         self.published: list[tuple[str, Any]] = []
         self.texts: list[tuple[str, str]] = []
         self.logs: list[tuple[str, str]] = []
@@ -84,7 +86,8 @@ class FakeNode(NodeCore):
 
 
 def line_follower(mode: str, **params: Any) -> FakeNode:
-    node = FakeNode("examples/line_follower.rscd", mode, **params)
+    """The line follower with a clear scan, its start's wait for data waived (correction)."""
+    node = FakeNode("examples/line_follower.rscd", mode, **{"wait_for_data": False, **params})
     node.receive(node.inputs["/scan"], Data({"ranges": [5.0] * 360}))
     return node
 
@@ -112,7 +115,7 @@ def test_a_message_that_matches_no_event_is_blocked_and_reported(message: Any) -
     assert node.published == []  # nothing reached the robot
     report = node.blocked_reports()[-1]
     assert report["topic"] == "/cmd_vel" and report["event"] is None
-    assert report["reason"] in ("matches no event on the topic", "a number in it is not finite")
+    assert report["reason"] in ("is the data of no event on it now", "a number in it is not finite")
     assert node.blocked_count == 1 and node.forwarded_count == 0
 
 
@@ -133,22 +136,24 @@ def test_the_layer_forwards_an_allowed_event_as_itself_and_blocks_a_forbidden_on
     assert node.request(node.outputs["/cmd_vel"], halt) is False  # not stopped, line found, safe: no halt
 
 
-def test_candidates_fail_closed() -> None:
-    from robosc.runtime.onboard.supervisor import Event
+def test_a_message_is_an_event_only_when_it_is_exactly_its_data() -> None:
+    from robosc.runtime.onboard.supervisor import ANY
 
-    move = Event("move", "e0", True, "message", "move", None, ({"linear": {"x": 0.15}},))
-    halt = Event("halt", "e1", True, "message", "halt", None, ({"linear": {"x": 0.0}, "angular": {"z": 0.0}},))
-    free = Event("free", "e2", True, "message", "free", None, (None,))  # computed data only
-    assert candidates(Twist(0.15, 0.3), [move, halt]) == [move]
-    assert candidates(Twist(0.0, 0.0), [move, halt]) == [halt]
-    assert candidates(Twist(0.1500001, 0.0), [move, halt]) == [move]  # float32 on the wire
-    assert candidates(Twist(0.16, 0.0), [move, halt]) == []
-    assert candidates(Twist(0.15, math.nan), [move, halt]) == []
-    assert candidates(Twist(7.0, 0.0), [move]) == [move]  # one event alone on the topic: it is that event
-    assert candidates(Twist(math.inf, 0.0), [move]) == []  # ... but never with a number that is not finite
-    assert candidates(Twist(9.0, 0.0), [move, free]) == [free]
-    assert matches(Float32(), 0.0) and not matches(Float32(), 1.0)
-    assert not matches(True, 1) and not matches(1, True)  # booleans are not numbers
+    move = {"linear": {"x": 0.15}, "angular": {"z": ANY}}
+    halt = {"linear": {"x": 0.0}, "angular": {"z": 0.0}}
+    assert conforms(Twist(0.15, 0.3), move) and not conforms(Twist(0.15, 0.3), halt)
+    assert conforms(Twist(0.0, 0.0), halt) and not conforms(Twist(0.0, 0.0), move)
+    assert not conforms(Twist(0.1500001, 0.0), move)  # a float64 field: exactly, no tolerance
+    assert not conforms(Twist(1e-7, 0.0), halt)  # a nonzero velocity is not zero
+    assert not conforms(Twist(0.15, math.nan), move) and not conforms(Twist(0.15, math.inf), move)
+    sideways = Twist(0.0, 0.0)
+    sideways.linear.y = 2.0  # a field the model does not provide must hold its default
+    assert not conforms(sideways, halt)
+    assert conforms(Twist(), None) and not conforms(Twist(0.1, 0.0), None)  # no data: all defaults
+    wire = Float32()
+    wire.data = 0.15000000596046448  # 0.15 as a float32 field carries it
+    assert conforms(wire, 0.15) and not conforms(wire, 0.16)
+    assert not conforms(True, 1) and not conforms(1, True)  # booleans are not numbers
     deep: Any = Data({})
     for _ in range(100):
         deep = Data({"inner": deep})
@@ -287,7 +292,8 @@ def test_view_topics_carry_events_only_while_someone_listens() -> None:
     node.start_recording()
     scan = Data({"ranges": [0.3] + [5.0] * 359})
     node.receive(node.inputs["/scan"], scan)
-    assert node.texts == [] and snapshots[0] == 0  # nobody listens: no record is even made
+    views = [name for name, _ in node.texts if name.startswith("live_view")]
+    assert views == [] and snapshots[0] == 0  # nobody listens: no record is even made
     listeners[0] = 1
     node.receive(node.inputs["/scan"], scan)
     events = [json.loads(text) for name, text in node.texts if name == "live_view/events"]

@@ -86,11 +86,13 @@ def test_module_runs_on_python_38(tmp_path: Path) -> None:
         "import maze_solver_supervisor as m\n"
         "from onboard.values import Data\n"
         "s = m.Robot(seed=1)\n"
+        "print(s.tick())\n"  # nothing before the first scan
+        "for e in ('scan_front', 'scan_right', 'scan_diag_right'): s.deliver(e, Data({'ranges': [5.0] * 360}))\n"
         "print(s.tick()); s.deliver('scan_front', Data({'ranges': [0.2]})); print(s.tick())\n"
-        "import onboard.node, onboard.recording, onboard.messages, onboard.live_server\n"
+        "import onboard.node, onboard.recording, onboard.messages, onboard.live_server, onboard.persist\n"
     )
     done = subprocess.run([str(python), "-c", script], cwd=tmp_path, capture_output=True, text=True, check=True)
-    assert done.stdout.split() == ["movement", "turn_left"]
+    assert done.stdout.split() == ["None", "movement", "turn_left"]
 
 
 def _load(state: Any, plan_: Any, sup: Any, network: Any) -> None:
@@ -255,7 +257,7 @@ def test_start_values_of_every_variable_type() -> None:
 
 def test_reset_returns_to_the_start() -> None:
     m_ = module_of("maze_solver")
-    sup = m_.Robot(seed=1)
+    sup = m_.Robot(seed=1, wait_for_data=False)
     start = sup.snapshot()
     sup.deliver("scan_front", Data({"ranges": [0.3]}))
     assert sup.tick() == "turn_left"
@@ -265,22 +267,30 @@ def test_reset_returns_to_the_start() -> None:
     assert sup.tick() == "movement"  # the allowed events are computed again after a reset
 
 
-def test_enum_conversion_falls_back_to_the_default_on_malformed_data() -> None:
+def test_enum_conversion_refuses_data_it_cannot_read() -> None:
+    from robosc.runtime.onboard.supervisor import Unreadable
+
     m_ = module_of("maze_solver")
     warnings: list[str] = []
     sup = m_.Robot(seed=1, warn=warnings.append)
     convert = sup.EVENT["scan_right"].convert
     wall = Data({"ranges": [5.0] * 240 + [0.5] + [5.0] * 119})
     assert sup.convert(convert, wall) == "wall_right"
+    assert sup.convert(convert, Data({"ranges": [math.inf] * 360})) == "no_wall_right"  # REP 117: no return
     assert warnings == []
-    assert sup.convert(convert, Data({"ranges": [math.nan] * 360})) == "no_wall_right"  # NaN: no rule holds
-    assert warnings == []
-    for bad in (None, Data({}), Data({"ranges": [0.1]}), Data({"ranges": "text"}), 42):
-        assert sup.convert(convert, bad) == "no_wall_right"
-    assert len(warnings) == 1 and "WallRight: unreadable data" in warnings[0]  # the rest rate-limited
+    for bad in (None, Data({}), Data({"ranges": [0.1]}), Data({"ranges": "text"}), 42, Data({"ranges": [math.nan] * 360})):
+        with pytest.raises(Unreadable, match="WallRight"):
+            sup.convert(convert, bad)
+    # delivered, unreadable data changes nothing and is counted
+    assert sup.deliver("scan_right", wall) is True
+    for bad in (Data({"ranges": []}), Data({"ranges": [math.nan] * 360}), Data({"ranges": [True] * 360})):
+        assert sup.deliver("scan_right", bad) is False
+    assert sup.snapshot()["variables"]["Distance.right"] == "wall_right"
+    assert sup.health()["unreadable"] == {"scan_right": 3}
+    assert len(warnings) == 1 and "scan_right: unreadable data" in warnings[0]  # the rest rate-limited
 
 
-def test_handlers_never_raise_and_keep_variables_in_their_type() -> None:
+def test_received_data_that_cannot_be_read_does_not_deliver_its_event() -> None:
     p = plan_supervisor(synthesize_model(load_model(ROOT / "examples/pick_and_light.rscd")))
     field = {f.label: f.name for f in p.fields}
     warnings: list[str] = []
@@ -288,16 +298,18 @@ def test_handlers_never_raise_and_keep_variables_in_their_type() -> None:
     sup.warn.interval = 0.0  # every warning, not rate-limited
     setattr(sup, field["Arm"], "picking")
     setattr(sup, field["pick"], "executing")
-    assert sup.deliver("pick.u_feedback", Data({"sequence": []})) is True  # value.sequence[0] fails: kept
+    assert sup.deliver("pick.u_feedback", Data({"sequence": []})) is False  # value.sequence[0] fails
     assert getattr(sup, field["Arm.progress"]) == 0
-    assert sup.deliver("pick.u_feedback", Data({"sequence": ["x"]})) is True  # a string for an integer: kept
+    assert sup.deliver("pick.u_feedback", Data({"sequence": ["x"]})) is False  # a string for an integer
     assert getattr(sup, field["Arm.progress"]) == 0
     assert sup.deliver("pick.u_feedback", Data({"sequence": [7]})) is True
     assert getattr(sup, field["Arm.progress"]) == 7
     assert len(warnings) == 2
-    setattr(sup, field["Arm.picks"], 3)  # picks: integer(0..3); picks + 1 is outside: kept
-    assert sup.deliver("pick.u_response", None) is True
+    setattr(sup, field["Arm.picks"], 3)  # picks: integer(0..3); picks + 1 is outside: not taken, nothing moves
+    assert sup.deliver("pick.u_response", Data({"sequence": [1]})) is False
     assert getattr(sup, field["Arm.picks"]) == 3 and "outside its type" in warnings[-1]
+    assert (getattr(sup, field["Arm"]), getattr(sup, field["pick"])) == ("picking", "executing")
+    assert sup.deliver("pick.u_response", None) is False  # no data at all
     # a response nobody waits for is ignored, not applied
     assert getattr(sup, field["set_light"]) == "idle"
     assert sup.deliver("set_light.u_response", None) is False
@@ -315,8 +327,9 @@ def test_a_double_variable_never_takes_nan_and_nan_data_is_not_sent() -> None:
     sup.deliver("scan", Data({"ranges": [5.0] * 360}))
     sup.deliver("correction", 10.0)
     assert sup.tick() == "move" and sent[-1] == ("move", {"linear": {"x": 0.15}, "angular": {"z": -0.1}})
-    sup.deliver("correction", float("nan"))  # kept at 10.0
+    assert sup.deliver("correction", float("nan")) is False  # not a value: kept at 10.0
     assert sup.snapshot()["variables"]["LineDetector.current_correction"] == 10.0
+    assert sup.deliver("correction", float("inf")) is False  # a double never takes infinity
     field = {f.label: f.name for f in p.fields}
     setattr(sup, field["LineDetector.current_correction"], 1e308)  # 0 - 1e308/100 is finite; make it overflow
     setattr(sup, field["LineDetector.current_correction"], float("inf"))
@@ -363,6 +376,15 @@ def test_tick_follows_the_supervisor_and_snapshot_is_json() -> None:
             return True
 
     sup = Robot(seed=1)
+    assert sup.tick() is None and sent == []  # nothing before every scan came once
+    clear = Data({"ranges": [5.0] * 360})
+    for scan in ("scan_front", "scan_right"):
+        sup.deliver(scan, clear)
+        assert sup.tick() is None and sup.holds("movement") == "held: waiting for the first readable data on " + (
+            "scan_diag_right" if scan == "scan_right" else "scan_diag_right, scan_right"
+        )
+    sup.deliver("scan_diag_right", clear)
+    assert sup.holds("movement") is None
     assert sup.tick() == "movement"
     assert sent[-1] == ("movement", {"linear": {"x": 0.3}})
     sup.deliver("scan_front", Data({"ranges": [0.3]}))
@@ -379,7 +401,7 @@ def test_tick_follows_the_supervisor_and_snapshot_is_json() -> None:
 
 def test_a_refused_send_leaves_the_state_as_it_was() -> None:
     m_ = module_of("maze_solver")
-    sup = m_.Robot(seed=1)
+    sup = m_.Robot(seed=1, wait_for_data=False)
     sup.send = lambda name, data: False
     sup.deliver("scan_front", Data({"ranges": [0.3]}))
     assert sup.tick() is None

@@ -4,6 +4,7 @@ the verbatim copy of :mod:`robosc.runtime.onboard` that goes next to it."""
 
 from __future__ import annotations
 
+import hashlib
 import re
 from importlib.resources import files
 from pathlib import Path
@@ -13,6 +14,7 @@ from robosc.runtime.onboard import VERSION
 from robosc.runtime.plan import Plan
 
 RUNTIME_PACKAGE = "onboard"  # the runtime's directory next to a generated module
+PLAN_PLACEHOLDER = "<plan>"  # replaced by the hash of the module's text
 
 
 def module_name(plan: Plan) -> str:
@@ -28,7 +30,11 @@ def render_module(plan: Plan, relative_names: bool = False) -> str:
     names = {c.name: c.ros_name for c in plan.communications}
     if relative_names:
         names = {k: v.lstrip("/") if v.startswith("/") else v for k, v in names.items()}
-    return template.render(plan=plan, version=VERSION, source_name=source_name(plan), ros_names=names)
+    text = template.render(
+        plan=plan, version=VERSION, source_name=source_name(plan), ros_names=names, plan_id=PLAN_PLACEHOLDER
+    )
+    digest = hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+    return text.replace(repr(PLAN_PLACEHOLDER), repr(digest), 1)
 
 
 def runtime_files() -> dict[str, str]:

@@ -45,6 +45,7 @@ class Field:
     group: str  # "automata", "communications", "data" or "variables"
     initial: str  # Python literal
     synthesis: bool = True  # takes part in synthesis (variables only)
+    domain: str = "None"  # Python literal: the values it takes (locations, an enum's values, a type), for restoring
 
 
 @record
@@ -89,7 +90,10 @@ class EventPlan:
     convert: str | None = None  # Python: (rules function, enum name, default) for enum data
     data: str | None = None  # constant data: Python expression for it; computed data: the method computing it
     computed: bool = False  # ``data`` is computed from the state (it may be refused)
-    signature: str | None = None  # Python literal: alternatives of the constant part of the data
+    # Python literal: (data plant field, {location: template}) where a template is the data
+    # with ANY where the model computes a value; None: it sends no data (the type's defaults)
+    signature: str | None = None
+    reads: tuple[str, ...] = ()  # controllable: communications whose received data its condition or data reads
 
     @property
     def sends(self) -> bool:
@@ -130,6 +134,7 @@ class DataChoice:
     data: str  # Python expression of the data
     constant: bool  # reads no state
     checks: tuple[str, ...] = ()  # Python conditions on ``data``: each computed number is finite
+    template: str = "None"  # Python: the data with ANY where it is computed (see _template)
 
 
 @record
@@ -239,18 +244,14 @@ def _type_check(v: m.Variable, steps: tuple[m.Step, ...]) -> str:
     return "None"
 
 
-def _signature(data: m.Expr | m.ObjectValue) -> str | None:
-    """The fields of provided data that are constants, as a Python literal (nested dicts):
-    what tells the messages of events sharing a topic apart. None: no constant part."""
+def _template(data: m.Expr | m.ObjectValue) -> str:
+    """Provided data as a Python literal that a supervision layer compares a controller's
+    message with: its constants, and ``ANY`` where the model computes the value (any
+    finite value in range passes there); fields it does not name hold their defaults."""
     if isinstance(data, m.ObjectValue):
-        items = []
-        for f in data.fields:
-            inner = _signature(f.value)
-            if inner is not None:
-                items.append(f"{f.property.name!r}: {inner}")
-        return "{" + ", ".join(items) + "}" if items else None
+        return "{" + ", ".join(f"{f.property.name!r}: {_template(f.value)}" for f in data.fields) + "}"
     value = _literal(data)
-    return constant(value) if value is not None else None
+    return constant(value) if value is not None else "ANY"
 
 
 def _checks(data: m.Expr | m.ObjectValue, path: str = "data") -> list[str]:
@@ -292,6 +293,7 @@ class _Planner:
                 for v in behaviour.variables:
                     variables[v] = ids.new("v", component.name, v.name)
         self.names = Names(locations, variables)
+        self.checked = Names(locations, variables, checked=True)  # where received data is read
         self.kept = set(network.variables)
         self.conversions: dict[m.EnumType, Conversion] = {}
 
@@ -307,7 +309,9 @@ class _Planner:
 
     def conversion(self, enum: m.EnumType) -> Conversion:
         if enum not in self.conversions:
-            rules = tuple((self.py(r.condition), r.value.name) for r in enum.rules if r.condition is not None)
+            rules = tuple(
+                (python(r.condition, self.checked), r.value.name) for r in enum.rules if r.condition is not None
+            )
             default = enum.default or (enum.values[0] if enum.values else None)
             source = enum.source.name if isinstance(enum.source, m.ObjectType | m.EnumType) else str(enum.source)
             self.conversions[enum] = Conversion(
@@ -319,7 +323,13 @@ class _Planner:
     def fields(self) -> list[Field]:
         """The automata (but messages' plants: one location, never read), then the variables."""
         out = [
-            Field(self.automaton_field[a], a.name, GROUPS[a.kind], repr(a.initial.name))
+            Field(
+                self.automaton_field[a],
+                a.name,
+                GROUPS[a.kind],
+                repr(a.initial.name),
+                domain=repr(tuple(location.name for location in a.locations)),
+            )
             for a in self.network.automata
             if not _constant(a)
         ]
@@ -327,20 +337,26 @@ class _Planner:
             for behaviour in component.behaviours:
                 for v in behaviour.variables:
                     label = f"{component.name}.{v.name}"
-                    out.append(Field(self.names.variables[v], label, "variables", constant(_start(v)), v in self.kept))
+                    field = self.names.variables[v]
+                    start = constant(_start(v))
+                    out.append(Field(field, label, "variables", start, v in self.kept, _type_check(v, ())))
         return out
 
-    def assignments(self, transition: m.ResultTransition) -> list[str]:
-        """The ``self._assign(...)`` call of a transition's assignments, as lines."""
+    def assignments(self, transition: m.ResultTransition, received: bool) -> list[str]:
+        """The ``self._assign(...)`` call of a transition's assignments, as lines; for an
+        uncontrollable event (``received``) ``self._receive(...)``, which reads the received
+        data through the runtime's checks and refuses the event when a value cannot be read."""
         items = []
+        names = self.checked if received else self.names
         for a in transition.assignments:
             label = f"{a.variable.owner}.{a.variable.name}"
             field = self.names.variables[a.variable]
-            parts = [repr(field), repr(step_path(a.steps)), repr(label), f"lambda: {self.py(a.value)}"]
+            parts = [repr(field), repr(step_path(a.steps)), repr(label), f"lambda: {python(a.value, names)}"]
             items.append(f"({', '.join(parts)}, {_type_check(a.variable, a.steps)})")
+        call = "self._receive" if received else "self._assign"
         if len(items) <= 1:
-            return [f"self._assign({item})" for item in items]
-        return ["self._assign(", *(f"{INDENT}{item}," for item in items), ")"]
+            return [f"{call}({item})" for item in items]
+        return [f"{call}(", *(f"{INDENT}{item}," for item in items), ")"]
 
     @staticmethod
     def branch_lines(
@@ -416,7 +432,7 @@ class _Planner:
             if isinstance(transition, m.TauTransition):
                 guard = self.py(transition.guard)
             else:
-                guard, assigns = "True", self.assignments(transition)
+                guard, assigns = "True", self.assignments(transition, not event.controllable)
             source, target = transition.source, transition.target
             branches.append((source.name if source else None, guard, target.name if target else None, assigns))
             here = "True" if source is None else f"self.{field} == {source.name!r}"
@@ -483,9 +499,8 @@ class _Planner:
                     data = f"{d.table}[self.{d.field}]"
                 else:
                     data, computed = d.method, True
-                provides = [p for p in self.model.provides if p.communication is event.communication]
-                alternatives = [_signature(p.data) for p in provides]
-                signature = "(" + "".join(f"{a}, " for a in alternatives).rstrip() + ")"
+                templates = "".join(f"{c.location!r}: {c.template}, " for c in d.choices)
+                signature = f"({d.field!r}, {{{templates}'none': None}})"
         prefix = "e" if event.controllable else "u"
         return EventPlan(
             event.name,
@@ -502,6 +517,7 @@ class _Planner:
             data,
             computed,
             signature,
+            self.reads(event) if event.controllable else (),
         )
 
     # -- communications and data ---------------------------------------------------------
@@ -546,7 +562,11 @@ class _Planner:
             data = event.provide.data
             constant = not any(isinstance(n, m.VariableRef | m.StateRef) for n in _expressions(data))
             checks = tuple(_checks(data))
-            choices.append(DataChoice(edge.target.name, event.name, enabled, self.data_py(data), constant, checks))
+            choices.append(
+                DataChoice(
+                    edge.target.name, event.name, enabled, self.data_py(data), constant, checks, _template(data)
+                )
+            )
         return DataPlant(
             self.automaton_field[automaton],
             comm_name,
@@ -557,7 +577,74 @@ class _Planner:
             none_enabled,
         )
 
+    # -- which received data each controllable event depends on ----------------------------
+    def data_reach(self) -> dict[m.Variable, frozenset[str]]:
+        """For each variable, the communications whose received data reaches it: assigned from
+        ``value``, or from a variable such data reached (to a fixpoint)."""
+        reach: dict[m.Variable, set[str]] = {}
+        uses: dict[m.Variable, set[m.Variable]] = {}
+        for component in self.model.components:
+            if component.automaton is None:
+                continue
+            for t in component.automaton.transitions:
+                if not isinstance(t, m.ResultTransition):
+                    continue
+                for a in t.assignments:
+                    for node in m.walk(a.value):
+                        if isinstance(node, m.DataRef):
+                            reach.setdefault(a.variable, set()).add(t.communication.name)
+                        elif isinstance(node, m.VariableRef):
+                            uses.setdefault(a.variable, set()).add(node.variable)
+        changed = True
+        while changed:
+            changed = False
+            for v, sources in uses.items():
+                for w in sources:
+                    extra = reach.get(w, set()) - reach.get(v, set())
+                    if extra:
+                        reach.setdefault(v, set()).update(extra)
+                        changed = True
+        return {v: frozenset(c) for v, c in reach.items()}
+
+    def conditions(self, event: Event) -> list[m.Expr]:
+        """Every condition on ``event``: the plants' guards, your requirements, what synthesis added."""
+        out: list[m.Expr] = []
+        for automaton in self.network.automata:
+            if event not in automaton.alphabet:
+                continue
+            if automaton.kind is AutomatonKind.COMPONENT:
+                assert automaton.component is not None and automaton.component.automaton is not None
+                for t in automaton.component.automaton.transitions:
+                    if isinstance(t, m.TauTransition) and t.guard is not None and event_of(self.network, t) is event:
+                        out.append(t.guard)
+            else:
+                out += [e.guard for e in automaton.edges if e.event is event and e.guard is not None]
+        guard = self.result.guard(event.name)
+        return out + [g for g in (guard.required, guard.added) if g is not None]
+
+    def reads(self, event: Event) -> tuple[str, ...]:
+        """The communications whose received data a controllable event's conditions read, and
+        for a command, the conditions and data of what it sends."""
+        expressions = self.conditions(event)
+        if event.kind in (K.MESSAGE, K.TRIGGER) and event.communication is not None:
+            for automaton in self.network.automata:
+                if automaton.kind is not AutomatonKind.DATA or event.communication not in {
+                    e.communication for e in automaton.alphabet
+                }:
+                    continue
+                for provide in automaton.alphabet:
+                    expressions += self.conditions(provide)
+                    if provide.provide is not None:
+                        expressions += _expressions(provide.provide.data)
+        found: set[str] = set()
+        for expression in expressions:
+            for node in m.walk(expression):
+                if isinstance(node, m.VariableRef):
+                    found |= self.reach.get(node.variable, frozenset())
+        return tuple(sorted(found))
+
     def build(self) -> Plan:
+        self.reach = self.data_reach()
         self.communications = {
             c: self.communication(component, c) for component in self.model.components for c in component.communications
         }

@@ -77,6 +77,18 @@ class Names:
     locations: Mapping[m.State, tuple[str, str]]  # state -> (field, location name)
     variables: Mapping[m.Variable, str]  # variable -> field
     data: str = "value"  # the name the received data has inside a handler
+    # received data is read through the runtime's checks (num, whole, flag, text), and a
+    # computation on it must give a number: unreadable data raises instead of passing as a value
+    checked: bool = False
+
+
+_READERS = {
+    m.BasicKind.DOUBLE: "num",
+    m.BasicKind.INTEGER: "whole",
+    m.BasicKind.BOOLEAN: "flag",
+    m.BasicKind.STRING: "text",
+}
+_ARITHMETIC = frozenset("+-*/")
 
 
 def access(base: str, steps: tuple[m.Step, ...]) -> str:
@@ -103,7 +115,9 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
     if isinstance(expr, m.VariableRef):
         return access(f"{owner}.{names.variables[expr.variable]}", expr.steps)
     if isinstance(expr, m.DataRef):
-        return access(names.data, expr.steps)
+        read = access(names.data, expr.steps)
+        reader = _READERS.get(expr.type.kind) if names.checked and isinstance(expr.type, m.BasicType) else None
+        return f"{reader}({read})" if reader else read
     if isinstance(expr, m.Unary):
         inner = _operand(expr.operand, names, owner)
         return f"not {inner}" if expr.op == "!" else f"-{inner}"
@@ -113,7 +127,11 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
             return f"{left} {expr.op} {right}"
         if expr.op == "=>":
             return f"not {left} or {right}"
-        return f"{left} {_OPERATORS[expr.op]} {right}"
+        text = f"{left} {_OPERATORS[expr.op]} {right}"
+        numeric = isinstance(expr.type, m.BasicType) and expr.type.kind in (m.BasicKind.DOUBLE, m.BasicKind.INTEGER)
+        if names.checked and numeric and expr.op in _ARITHMETIC and any(isinstance(n, m.DataRef) for n in m.walk(expr)):
+            return f"num({text})"  # inf - inf: NaN is not a value
+        return text
     raise TypeError(f"cannot compile {type(expr).__name__}")
 
 

@@ -80,7 +80,11 @@ class Simulator:
         self.plan = plan
         self.module = load_module(plan)
         self.warnings: list[str] = []
-        self.supervisor: Any = self.module.Robot(seed=seed, warn=self.warnings.append, observer=self._observe)
+        # the simulator explores the model: the node's wait for its first data is waived, events
+        # come as the user or the random run delivers them
+        self.supervisor: Any = self.module.Robot(
+            seed=seed, warn=self.warnings.append, observer=self._observe, wait_for_data=False
+        )
         self.step = 0
         self.log = log
         self.on_event = on_event

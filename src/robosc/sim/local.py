@@ -95,7 +95,7 @@ class LocalRun:
 
         self.robots = []
         for i in range(sim.robots):
-            robot = Driven(seed=seed + i, warn=lambda text: None)
+            robot = Driven(seed=seed + i, warn=lambda text: None, clock=lambda: run.sim.time)
             robot.index = i
             self.robots.append(robot)
         self._next_tick = 0.0

@@ -8,16 +8,18 @@
   message cannot carry (a number out of its field's range, NaN or infinity, a field
   the message does not have) with :class:`Unsendable`: nothing half-filled is sent.
 * :func:`received`: the data of a received message as the model sees it.
-* :func:`candidates`: which events a controller's message can be (supervision layer).
+* :func:`conforms`: whether a controller's message is exactly an event's data (supervision layer).
 """
 
 from __future__ import absolute_import, annotations
 
 import importlib
 import math
-from typing import Any, Sequence
+import struct
+from typing import Any
 
-from .values import finite
+from .supervisor import ANY
+from .values import fields_of, finite
 
 STD_MSGS = {"string": "String", "boolean": "Bool", "integer": "Int16", "double": "Float32", "none": "Empty"}
 FLOAT32_MAX = 3.4028234663852886e38
@@ -35,7 +37,6 @@ INTEGER_RANGES = {
     "uint64": (0, 2**64 - 1),
 }
 FLOATS = {"float32": FLOAT32_MAX, "float": FLOAT32_MAX, "float64": None, "double": None}
-TOLERANCE = 1e-6  # relative: a float32 on the wire matches the double the model wrote
 
 
 class Unsendable(ValueError):
@@ -147,43 +148,76 @@ def received(communication: Any, message: Any) -> Any:
     return getattr(message, "data", message)
 
 
-def matches(message: Any, signature: Any) -> bool:
-    """Whether a message carries the constant fields an event's provided data sets
-    (``signature`` None: no constant field, any message)."""
-    if signature is None:
-        return True
-    if isinstance(signature, dict):
-        for key, expected in signature.items():
-            try:
-                actual = getattr(message, key)
-            except Exception:
-                return False
-            if not matches(actual, expected):
-                return False
-        return True
-    actual = message
-    if not isinstance(message, (bool, int, float, str)) and hasattr(message, "data"):
-        actual = message.data
-    if isinstance(signature, bool) or isinstance(actual, bool):
-        return isinstance(actual, bool) and isinstance(signature, bool) and actual == signature
-    if isinstance(signature, (int, float)):
-        if not isinstance(actual, (int, float)) or not math.isfinite(float(actual)):
+def _f32(value: float) -> float:
+    """``value`` as a float32 field carries it on the wire."""
+    return float(struct.unpack("f", struct.pack("f", value))[0])
+
+
+def _leaf_equal(kind: str, actual: Any, expected: Any) -> bool:
+    """A field's value equals what is expected of it, as the wire carries the field's type:
+    exactly (no tolerance), a float32 field after rounding both to float32."""
+    if isinstance(expected, bool) or isinstance(actual, bool):
+        return isinstance(actual, bool) == isinstance(expected, bool) and bool(actual == expected)
+    if kind in FLOATS or isinstance(expected, float):
+        try:
+            a, e = float(actual), float(expected)
+        except (TypeError, ValueError):
             return False
-        return abs(float(actual) - float(signature)) <= TOLERANCE * max(1.0, abs(float(signature)))
-    return bool(actual == signature)
+        if not (math.isfinite(a) and math.isfinite(e)):
+            return False
+        return _f32(a) == _f32(e) if FLOATS.get(kind) is not None else a == e
+    if isinstance(actual, (bytes, bytearray)) or isinstance(expected, (bytes, bytearray)):
+        return bytes(actual) == bytes(expected)
+    try:
+        if isinstance(expected, (list, tuple)) or type(expected).__name__ in ("array", "ndarray"):
+            a_items, e_items = list(actual), list(expected)
+            element = kind.split("[")[0] if "[" in kind else kind.replace("sequence<", "").rstrip(">")
+            return len(a_items) == len(e_items) and all(
+                _same(x, y, element) for x, y in zip(a_items, e_items)
+            )
+        return bool(actual == expected)
+    except Exception:
+        return False
 
 
-def candidates(message: Any, events: Sequence[Any]) -> list[Any]:
-    """The events a controller's message can be, failing closed: none when a number in it is
-    not finite; the event itself when one event alone uses the topic; otherwise those
-    whose provided constant data it carries (none, when it carries nobody's)."""
-    if not finite(message):
-        return []
-    if len(events) == 1:
-        return list(events)
-    found = []
-    for event in events:
-        alternatives = event.signature if event.signature else (None,)
-        if any(matches(message, alternative) for alternative in alternatives):
-            found.append(event)
-    return found
+def _same(actual: Any, default: Any, kind: str = "") -> bool:
+    """``actual`` equals ``default`` on every field (a whole message, or one value)."""
+    return conforms(actual, None, default) if fields_of(default) else _leaf_equal(kind, actual, default)
+
+
+def conforms(message: Any, template: Any, default: Any = None) -> bool:
+    """Whether a controller's ``message`` is exactly the data of an event: equal to the
+    ``template``'s constants, finite where the template says ``ANY`` (the model computes the
+    value), and equal to the message type's default on every field the template does not
+    name (``template`` None: the event sends no data, every field at its default). Equal as
+    the wire carries each field, with no tolerance: a velocity of 1e-7 is not 0."""
+    if default is None:
+        default = type(message)()
+    kinds = field_types(default)
+    if not kinds:  # not a message: a value
+        if template is ANY:
+            return finite(message)
+        return _leaf_equal("", message, template if template is not None else default)
+    if template is not None and not isinstance(template, dict):
+        if "data" not in kinds:
+            return False
+        template = {"data": template}  # std_msgs types: the model's basic data is their 'data'
+    template = template or {}
+    for key in template:
+        if key not in kinds:
+            return False
+    for key, kind in kinds.items():
+        try:
+            actual, expected = getattr(message, key), getattr(default, key)
+        except AttributeError:
+            return False
+        wanted = template.get(key, None) if key in template else None
+        if key in template and wanted is ANY:
+            if not finite(actual):
+                return False
+        elif fields_of(expected):
+            if not conforms(actual, wanted if isinstance(wanted, dict) else None, expected):
+                return False
+        elif not _leaf_equal(kind, actual, wanted if key in template else expected):
+            return False
+    return True

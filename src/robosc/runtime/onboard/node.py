@@ -21,7 +21,8 @@ import sys
 import time
 from typing import Any, Callable, Dict, List, Optional, Union
 
-from .messages import Unsendable, candidates, fill, received, wire_type
+from .messages import Unsendable, conforms, fill, received, wire_type
+from .persist import StateFile, default_path
 from .recording import EventLog, Gated, Recorder, writable
 from .supervisor import Warnings
 from .values import finite, plain
@@ -30,6 +31,7 @@ MODES = ("controller", "supervisor")
 CONTROLLER_PREFIX = "robosc/controller"  # where a supervision layer meets the controller
 STATE_TOPIC = "state"
 BLOCKED_TOPIC = "blocked"
+HEALTH_TOPIC = "health"  # latched: whether the node holds, what it waits for, unreadable data
 # for ``robosc view`` on another machine: the live view's page (latched) and every event record
 VIEW_PAGE_TOPIC = "live_view/page"
 VIEW_EVENTS_TOPIC = "live_view/events"
@@ -87,6 +89,21 @@ PARAMETERS = (
     ),
     Parameter("qos_depth", 10, "queue depth of every publisher and subscription", 1, 10000),
     Parameter("server_timeout", 5.0, "seconds to wait for a service or action server before a call fails", 0.0, 3600.0),
+    Parameter("resume", True, "persist the supervisor's state at every change and resume from it after a restart"),
+    Parameter("state_file", "", "where the state is persisted (empty: $ROS_HOME/robosc/<node>.state.json)"),
+    Parameter("state_max_age", 3600.0, "seconds after which a persisted state is too old to resume", 0.0, 1e9),
+    Parameter(
+        "wait_for_data",
+        True,
+        "perform nothing until every communication whose data a condition reads has delivered readable data",
+    ),
+    Parameter(
+        "data_timeout",
+        1.0,
+        "seconds of unreadable data from a communication before the events that read it are held",
+        0.0,
+        3600.0,
+    ),
 )
 
 
@@ -142,9 +159,17 @@ class NodeCore(object):
     ``cancel_goal``. (Attribute names differ from rclpy's Node, which the ROS 2 adapter
     also is.)"""
 
-    def setup(self, robot_class: Any, mode: str, parameters: Dict[str, Any], log: Callable[[str, str], None]) -> None:
+    def setup(
+        self,
+        robot_class: Any,
+        mode: str,
+        parameters: Dict[str, Any],
+        log: Callable[[str, str], None],
+        full_name: str = "",
+    ) -> None:
         """``parameters``: name -> value as given (missing: default); bad values are
-        refused with a log line and replaced by the default."""
+        refused with a log line and replaced by the default. ``full_name``: the node's name
+        with its namespace (where its state is persisted by default)."""
         if mode not in MODES:
             raise ValueError("mode must be controller or supervisor")
         self.mode = mode
@@ -160,8 +185,20 @@ class NodeCore(object):
             self.params[p.name] = value
         seed = self.params["seed"]
         self.warnings = Warnings(lambda message: self.log("warning", message))
-        self.supervisor = robot_class(seed=seed if seed >= 0 else None, warn=self.warnings)
+        self.supervisor = robot_class(
+            seed=seed if seed >= 0 else None,
+            warn=self.warnings,
+            wait_for_data=self.params["wait_for_data"],
+            data_timeout=self.params["data_timeout"],
+        )
         self.supervisor.send = self.send
+        self.reported: Optional[Dict[str, Any]] = None  # the health last published
+        self.state_file: Optional[StateFile] = None
+        self.resumed = False
+        if self.params["resume"]:
+            path = self.params["state_file"] or default_path(full_name or default_name(robot_class))
+            self.state_file = StateFile(path, robot_class.ROBOT, robot_class.PLAN, self.params["state_max_age"])
+            self.resume()
         self.sinks: List[Callable[[Dict[str, Any]], Any]] = []
         self.event_log: Optional[EventLog] = None
         path = self.params["event_log"]
@@ -176,6 +213,50 @@ class NodeCore(object):
         self.text_publishers: Dict[str, Any] = {}  # made by the adapter
         self.text_type: Any = None
         self._plan_routes(robot_class)
+
+    # ---- restarts ------------------------------------------------------------------------------
+    def resume(self) -> None:
+        """Take back the persisted state, if there is one to take; a call or goal that was
+        waiting for its answer when the node stopped is lost with it: its error event."""
+        assert self.state_file is not None
+        path = self.state_file.path
+        fields, why = self.state_file.load()
+        if fields is not None:
+            try:
+                self.supervisor.restore(fields)
+            except ValueError as error:
+                fields, why = None, "corrupt (%s)" % (error,)
+        if fields is None:
+            if why is not None:
+                self.log("error", "state file %s refused: %s; starting from the initial state" % (path, why))
+            self.supervisor.reset()
+            return
+        self.resumed = True
+        self.log("info", "resumed from %s (saved %.1f s ago)" % (path, self.state_file.age))
+        for failed in self.supervisor.calls_in_flight():
+            self.log("warning", "%s: the call was waiting for its answer when the node stopped; taken as failed" % failed)
+            self.supervisor.deliver(failed)
+
+    def checkpoint(self) -> None:
+        """After each callback and cycle: persist the state if it changed, and report on
+        ``health`` (latched) when what the node holds changed."""
+        if self.state_file is not None:
+            try:
+                self.state_file.save(self.supervisor.persistent())
+            except Exception as error:  # a full disk must not stop the node; said, and tried again
+                self.warnings("state not persisted: %s: %s" % (type(error).__name__, error), "persist")
+        health = self.supervisor.health()
+        if health != self.reported:
+            before = self.reported
+            self.reported = health
+            if health["held"] and (before is None or not before["held"]):
+                self.log("warning", "holding every command: waiting for data on %s" % ", ".join(health["waiting_for"]))
+            elif before is not None and before["held"] and not health["held"]:
+                self.log("info", "every communication delivered data: no longer held")
+            try:
+                self.publish_text(HEALTH_TOPIC, json.dumps(dict(health, resumed=self.resumed), sort_keys=True))
+            except Exception as error:
+                self.warnings("cannot report health: %s" % (error,), "health report")
 
     def _plan_routes(self, robot_class: Any) -> None:
         by_comm: Dict[str, Dict[str, Any]] = {}
@@ -215,6 +296,7 @@ class NodeCore(object):
         self.start_recording(self.live_view.publish if self.live_view is not None else None, clock)
         create()
         self.start_view_topics(page)
+        self.checkpoint()  # the first report on health, now that its publisher exists
 
     def start_recording(
         self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
@@ -302,6 +384,7 @@ class NodeCore(object):
                 self.supervisor.tick()
             except Exception as error:  # keep the node alive; the state is unchanged
                 self.warnings("tick failed: %s: %s" % (type(error).__name__, error), "tick")
+        self.checkpoint()
         if self.params["publish_state"]:
             self.publish_state()
 
@@ -322,7 +405,8 @@ class NodeCore(object):
             self.supervisor.tick()
 
     def publish_state(self) -> None:
-        self.publish_text(STATE_TOPIC, self.supervisor.to_json())
+        state = dict(self.supervisor.snapshot(), health=self.supervisor.health())
+        self.publish_text(STATE_TOPIC, json.dumps(state, sort_keys=True))
 
     # ---- data from the robot ---------------------------------------------------------------
     def receive(self, topic: Topic, message: Any) -> None:
@@ -335,6 +419,7 @@ class NodeCore(object):
             self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
+        self.checkpoint()
         if topic.forward is not None:
             topic.forward.publish(message)
 
@@ -347,6 +432,7 @@ class NodeCore(object):
             self.after_message()
         except Exception as error:
             self.warnings("%s: %s: %s" % (event.name, type(error).__name__, error), "answer " + event.name)
+        self.checkpoint()
 
     # ---- commands: the supervisor performs a controllable event ----------------------------
     def send(self, name: str, data: Any) -> bool:
@@ -383,25 +469,49 @@ class NodeCore(object):
 
     # ---- supervision layer: commands from the controller ----------------------------------
     def request(self, topic: Topic, message: Any) -> bool:
-        """The controller published ``message`` on ``topic``: forwarded as the first event it
-        matches that the supervisor allows, else blocked and reported. Never forwarded
-        as an event it does not match."""
-        try:
-            found = candidates(message, topic.events)
-            for event in found:
-                if self.supervisor.perform(event.name, message):
-                    self.forwarded_count += 1
-                    self.supervisor.settle()
-                    return True
-        except Exception as error:
-            self.warnings("command on %s: %s: %s" % (topic.name, type(error).__name__, error), "request " + topic.name)
-            found = []
-        if not found:
-            why = "matches no event on the topic" if finite(message) else "a number in it is not finite"
-            self.blocked(None, topic.name, why, message)
-        else:
-            self.blocked(found[0].name, topic.name, "the supervisor does not allow it now", message)
+        """The controller published ``message`` on ``topic``: forwarded as the first event whose
+        data it is exactly (see :func:`messages.conforms`) and that the supervisor allows now,
+        else blocked and reported. Never forwarded as an event whose data it is not."""
+        found = self.events_of(message, topic.events, topic.name)
+        for event in found:
+            if self.supervisor.perform(event.name, message):
+                self.forwarded_count += 1
+                self.supervisor.settle()
+                self.checkpoint()
+                return True
+        self.refuse(found, topic.name, message)
         return False
+
+    def admit(self, call: Call, request: Any) -> bool:
+        """The controller calls a service or sends a goal: performed (True) only when the
+        request is exactly the trigger's data and the supervisor allows it now; else reported."""
+        found = self.events_of(request, [call.trigger], call.name)
+        if found and self.supervisor.perform(call.trigger.name, request):
+            self.checkpoint()
+            return True
+        self.refuse(found, call.name, request)
+        return False
+
+    def events_of(self, message: Any, events: List[Any], where: str) -> List[Any]:
+        """The events among ``events`` whose data ``message`` is exactly, now (none when a number
+        in it is not finite, or it cannot be compared)."""
+        try:
+            if not finite(message):
+                return []
+            return [e for e in events if conforms(message, self.supervisor.template(e.name))]
+        except Exception as error:
+            self.warnings("command on %s: %s: %s" % (where, type(error).__name__, error), "request " + where)
+            return []
+
+    def refuse(self, found: List[Any], where: str, message: Any) -> None:
+        """Report a controller's command that is not forwarded: why, on ``blocked``."""
+        if not found:
+            why = "is the data of no event on it now" if finite(message) else "a number in it is not finite"
+            self.blocked(None, where, why, message)
+            return
+        self.blocked(
+            found[0].name, where, self.supervisor.holds(found[0].name) or "the supervisor does not allow it now", message
+        )
 
     def blocked(self, event: Optional[str], where: str, reason: str, data: Any = None) -> None:
         """Report a blocked request on ``blocked`` (JSON) and in the log (rate-limited)."""

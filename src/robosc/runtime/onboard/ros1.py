@@ -25,6 +25,7 @@ import rospy
 from .messages import MissingType, load
 from .node import (
     BLOCKED_TOPIC,
+    HEALTH_TOPIC,
     PARAMETERS,
     STATE_TOPIC,
     VIEW_EVENTS_TOPIC,
@@ -51,7 +52,7 @@ class SupervisorNode(NodeCore):
                 given[p.name] = rospy.get_param("~" + p.name, p.default)
             except Exception as error:  # an unreadable parameter server entry
                 _log("error", "parameter %s unreadable: %s" % (p.name, error))
-        self.setup(robot_class, mode, given, _log)
+        self.setup(robot_class, mode, given, _log, rospy.get_name())
         self.lock = self.supervisor.lock
         self._load_types()
         self.start_outputs(robot_class, rospy.get_time, self._create)
@@ -71,7 +72,10 @@ class SupervisorNode(NodeCore):
     def _create(self) -> None:
         depth = self.params["qos_depth"]
         supervising = self.mode == "supervisor"
-        self.text_publishers = {STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10)}
+        self.text_publishers = {
+            STATE_TOPIC: rospy.Publisher(STATE_TOPIC, self.text_type, queue_size=10),
+            HEALTH_TOPIC: rospy.Publisher(HEALTH_TOPIC, self.text_type, queue_size=10, latch=True),
+        }
         if self.view_topics:  # latched: a viewer that comes later gets the page and the last event
             for name in (VIEW_PAGE_TOPIC, VIEW_EVENTS_TOPIC):
                 self.text_publishers[name] = rospy.Publisher(name, self.text_type, queue_size=100, latch=True)
@@ -196,9 +200,7 @@ class SupervisorNode(NodeCore):
         def serve(request: Any) -> Any:
             """The controller calls the service: forwarded if the supervisor allows it."""
             with self.lock:
-                allowed = self.supervisor.perform(call.trigger.name, request)
-                if not allowed:
-                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", request)
+                allowed = self.admit(call, request)
             if not allowed:
                 raise rospy.ServiceException("blocked by the supervisor")
             try:
@@ -220,13 +222,11 @@ class SupervisorNode(NodeCore):
             supervisor allows it, feedback and result passed back."""
             server = call.server
             with self.lock:
-                allowed = self.supervisor.perform(call.trigger.name, goal)
+                allowed = self.admit(call, goal)
                 if allowed:
                     call.goal += 1
                     number = call.goal
                     self.supervisor.settle()
-                else:
-                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", goal)
             if not allowed:
                 server.set_aborted(text="blocked by the supervisor")
                 return

@@ -31,13 +31,14 @@ from rclpy.action.server import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
 from .messages import MissingType, load
 from .node import (
     BLOCKED_TOPIC,
+    HEALTH_TOPIC,
     PARAMETERS,
     STATE_TOPIC,
     VIEW_EVENTS_TOPIC,
@@ -64,7 +65,7 @@ class SupervisorNode(Node, NodeCore):
         for p in PARAMETERS:
             descriptor = ParameterDescriptor(description=p.description, read_only=True, dynamic_typing=True)
             given[p.name] = self.declare_parameter(p.name, p.default, descriptor).value
-        self.setup(robot_class, mode, given, self._log)
+        self.setup(robot_class, mode, given, self._log, self.get_fully_qualified_name())
         self.lock = self.supervisor.lock
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
@@ -100,13 +101,20 @@ class SupervisorNode(Node, NodeCore):
         depth = self.params["qos_depth"]
         reliable = QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE)
         best_effort = QoSProfile(depth=depth, reliability=ReliabilityPolicy.BEST_EFFORT)
-        overrides = QoSOverridingOptions.with_default_policies()
+        # history, depth, reliability and durability can be set per topic (a robot that publishes its
+        # emergency stop transient local is read so: qos_overrides./stop.subscription.durability)
+        overrides = QoSOverridingOptions(
+            [QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH, QoSPolicyKind.RELIABILITY, QoSPolicyKind.DURABILITY]
+        )
         supervising = self.mode == "supervisor"
-        self.text_publishers = {STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10)}
+        latched = QoSProfile(
+            depth=depth, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
+        )
+        self.text_publishers = {
+            STATE_TOPIC: self.create_publisher(self.text_type, STATE_TOPIC, 10),
+            HEALTH_TOPIC: self.create_publisher(self.text_type, HEALTH_TOPIC, latched),
+        }
         if self.view_topics:  # transient local: a viewer that comes later gets the page and last events
-            latched = QoSProfile(
-                depth=depth, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
-            )
             for name in (VIEW_PAGE_TOPIC, VIEW_EVENTS_TOPIC):
                 self.text_publishers[name] = self.create_publisher(self.text_type, name, latched)
         if supervising:
@@ -294,9 +302,7 @@ class SupervisorNode(Node, NodeCore):
             """The controller calls the service (on a thread of its own): forwarded if the
             supervisor allows it; a blocked call is answered with an empty response."""
             with self.lock:
-                allowed = self.supervisor.perform(call.trigger.name, request)
-                if not allowed:
-                    self.blocked(call.trigger.name, call.name, "the supervisor does not allow it now", request)
+                allowed = self.admit(call, request)
             if not allowed:
                 return response
             answer = None
@@ -313,15 +319,11 @@ class SupervisorNode(Node, NodeCore):
             """The controller sends a goal (on a thread of its own): forwarded if the supervisor
             allows it, feedback and result passed back; a blocked goal is aborted."""
             with self.lock:
-                allowed = self.supervisor.perform(call.trigger.name, goal_handle.request)
+                allowed = self.admit(call, goal_handle.request)
                 if allowed:
                     call.goal += 1
                     number = call.goal
                     self.supervisor.settle()
-                else:
-                    self.blocked(
-                        call.trigger.name, call.name, "the supervisor does not allow it now", goal_handle.request
-                    )
             if not allowed:
                 goal_handle.abort()
                 return call.type.Result()
