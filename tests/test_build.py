@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -16,7 +17,7 @@ import pytest
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
 from robosc.codegen.ros import generate, package_name
-from ros_support import ROOT, Ros1, Ros2, build_package, unavailable
+from ros_support import ROOT, Ros1, Ros2, build_package, unavailable, wait_until
 
 COLCON = Path(sys.executable).parent / "colcon"
 DEBIAN = {**os.environ, "PATH": "/usr/bin:/bin:" + os.environ.get("PATH", "")}
@@ -83,6 +84,7 @@ start()
 moves = Recorder("/robot7/cmd_vel", Twist)
 lefts = Recorder("/robot7/rotate_left", Int16)
 scan_pub = publisher("/robot7/scan", LaserScan, timeout=30)
+scan_pub.publish(scan([5.0] * 360))
 assert wait_for(lambda: moves.messages(), 10), "no movement"
 scan_pub.publish(scan([0.3] + [5.0] * 359))
 assert wait_for(lambda: lefts.messages(), 5), "no turn at the wall"
@@ -91,6 +93,26 @@ done({"left": lefts.messages()[0].data, "move": moves.messages()[0].linear.x})
         timeout=90,
     )
     assert result == {"left": 90, "move": pytest.approx(0.3)}
+    # roslaunch starts the node again when it dies; it resumes, still turning
+    node = str(installed / "lib/maze_solver_robosc/maze_solver_robosc_node")
+
+    def pids() -> list[str]:
+        return subprocess.run(["pgrep", "-f", node], capture_output=True, text=True).stdout.split()
+
+    found = pids()
+    assert len(found) == 1, found
+    os.kill(int(found[0]), signal.SIGKILL)
+    assert wait_until(lambda: pids() not in ([], found), 30), "not respawned"
+    turning = ros1.client(
+        """
+start()
+state = Recorder("/robot7/health", String)
+assert wait_for(lambda: state.messages(), 20), "no health from the respawned node"
+done(json.loads(state.messages()[-1].data))
+""",
+        timeout=60,
+    )
+    assert turning["resumed"] is True
 
 
 def test_ros2_package_builds_with_colcon_and_runs_from_the_install_space(ros2: Ros2, tmp_path: Path) -> None:
@@ -114,7 +136,14 @@ def test_ros2_package_builds_with_colcon_and_runs_from_the_install_space(ros2: R
     from sensor_msgs.msg import LaserScan
 
     scan = ros2.node.create_publisher(LaserScan, "/robot3/scan", 10)
-    assert ros2.spin_until(lambda: bool(moves), 20), "no movement:\n" + ros2.processes.output()
+
+    def clear() -> bool:
+        message: Any = LaserScan()
+        message.ranges = [5.0] * 360
+        scan.publish(message)
+        return bool(moves)
+
+    assert ros2.spin_until(clear, 20), "no movement:\n" + ros2.processes.output()
 
     def wall() -> bool:
         message: Any = LaserScan()

@@ -164,12 +164,15 @@ def test_a_message_is_an_event_only_when_it_is_exactly_its_data() -> None:
 def test_the_controller_never_publishes_what_its_message_cannot_carry() -> None:
     node = FakeNode("examples/maze_solver.rscd", "controller")
     assert node.send("turn_left", 90) is True
+    assert node.published == []  # on the wire once the state it leads to is persisted
+    node.checkpoint()
     assert node.published[-1][0] == "/rotate_left" and node.published[-1][1].data == 90
     assert node.send("turn_left", 40000) is False  # outside Int16
     assert node.send("turn_left", 1.5) is False
     assert node.send("turn_left", True) is False
     assert node.send("movement", {"linear": {"x": float("nan")}}) is False
     assert node.send("movement", {"linear": {"w": 1.0}}) is False  # no such field
+    node.checkpoint()
     assert len(node.published) == 1
     assert any("outside int16" in text for _, text in node.logs)
 

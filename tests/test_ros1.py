@@ -24,9 +24,12 @@ lefts = Recorder("/rotate_left", Int16)
 state = State()
 scan_pub = publisher("/scan", LaserScan)
 done_pub = publisher("/rotate_done", Empty)
+rospy.sleep(0.5)
+before_scan = len(moves.messages()) + len(lefts.messages())
+scan_pub.publish(scan([5.0] * 360))
 assert wait_for(lambda: len(moves.messages()) >= 3), "no movement commands"
 speed = moves.messages()[-1].linear.x
-# malformed data: an empty array, NaN, a short array: the enums fall back to their defaults
+# malformed data: an empty array, NaN, a short array: not delivered, the state is kept
 for bad in ([], [float("nan")] * 360, [5.0]):
     scan_pub.publish(scan(bad))
     rospy.sleep(0.2)
@@ -45,10 +48,11 @@ scan_pub.publish(scan([5.0] * 360))
 done_pub.publish(Empty())
 assert wait_for(lambda: state.value("Platform") == "ready", 5)
 assert wait_for(lambda: len(moves.messages()) > 0, 5)
-done({"speed": speed, "turn": lefts.messages()[0].data, "alive_moves": alive_moves,
+done({"speed": speed, "turn": lefts.messages()[0].data, "alive_moves": alive_moves, "before_scan": before_scan,
       "moving_while_turning": moving_while_turning, "front": state.value("Distance.front")})
 """
     )
+    assert result["before_scan"] == 0  # nothing is commanded before the first scan
     assert result["speed"] == 0.3
     assert result["turn"] == 90
     assert result["alive_moves"] >= 3
@@ -80,9 +84,9 @@ def speeds(seconds):
     return [m.linear.x for m in cmd.messages()]
 
 report = {}
-report["start"] = speeds(0.5)  # unsafe until the first scan, no line yet
-correction.publish(Float32(data=10.0))
 scan_pub.publish(scan([5.0] * 360))
+report["start"] = speeds(0.5)  # held: no correction yet
+correction.publish(Float32(data=10.0))
 assert wait_for(lambda: state.value("Lidar.safety") == "safe" and state.value("LineDetector") == "line_found")
 report["driving"] = speeds(0.5)
 report["steer"] = cmd.messages()[-1].angular.z
@@ -98,7 +102,7 @@ report["unsafe"] = speeds(0.5)
 done(report)
 """
     )
-    assert result["start"] and set(result["start"]) == {0.0}
+    assert result["start"] == []
     assert 0.15 in result["driving"]
     assert abs(result["steer"] - (-0.1)) < 1e-9
     assert result["stopped"] and set(result["stopped"]) == {0.0}, "moved while the emergency stop was active"
@@ -251,6 +255,13 @@ scan_pub = publisher("/scan", LaserScan)
 forward = Twist()
 forward.linear.x = 0.3
 report = {}
+controller_move.publish(forward)  # before any scan: held
+assert wait_for(lambda: blocked.messages(), 5), "a command before the first scan was not reported"
+report["held"] = json.loads(blocked.messages()[-1].data)["reason"]
+blocked.clear()
+scan_pub.publish(scan([5.0] * 360))
+assert wait_for(lambda: state.value("Distance.front") == "no_wall_front", 5)
+rospy.sleep(0.2)
 controller_move.publish(forward)  # the way is free: allowed
 assert wait_for(lambda: robot_moves.messages(), 5), "an allowed command was not forwarded"
 controller_left.publish(Int16(data=90))  # no wall in front: turning left is not allowed
@@ -272,6 +283,7 @@ report["platform"] = state.value("Platform")
 done(report)
 """
     )
+    assert result["held"].startswith("held: waiting for the first readable data on")
     assert result["blocked_left"] == "turn_left"
     assert result["blocked_move"] == "movement"
     assert result["moves_into_wall"] == 0
@@ -296,7 +308,7 @@ rospy.wait_for_service("/robosc/controller/light/set", 10)
 assert controller_arm.wait_for_server(rospy.Duration(10))
 report = {}
 # the light is dark: work needs Light.lit, so the goal is blocked
-controller_arm.send_goal(TestGoal(goal=5))
+controller_arm.send_goal(TestGoal(goal=7))
 controller_arm.wait_for_result(rospy.Duration(5))
 report["first_goal"] = controller_arm.get_state()
 assert wait_for(lambda: blocked.messages(), 5)
@@ -306,8 +318,11 @@ report["goals_before"] = list(goals)
 answer = controller_light(True)
 report["light_answer"] = answer.success
 assert wait_for(lambda: state.value("Light") == "lit", 5)
+controller_arm.send_goal(TestGoal(goal=6))  # not the goal the model provides (7): blocked
+controller_arm.wait_for_result(rospy.Duration(5))
+report["other_goal"] = controller_arm.get_state()
 feedback = []
-controller_arm.send_goal(TestGoal(goal=6), feedback_cb=lambda f: feedback.append(f.feedback))
+controller_arm.send_goal(TestGoal(goal=7), feedback_cb=lambda f: feedback.append(f.feedback))
 controller_arm.wait_for_result(rospy.Duration(10))
 report["second_goal"] = controller_arm.get_state()
 report["result"] = controller_arm.get_result().result
@@ -325,7 +340,8 @@ done(report)
     assert result["second_goal"] == 3  # GoalStatus.SUCCEEDED
     assert result["result"] == 42
     assert result["feedback"] == [3]
-    assert result["goals"] == [6]
+    assert result["other_goal"] == 4  # ABORTED: only the goal whose data the model provides goes through
+    assert result["goals"] == [7]
     assert result["arm"] == "idle"
     assert node.poll() is None
 
@@ -378,8 +394,13 @@ blocked = Recorder("/blocked", String)
 state = State()
 controller = publisher("/robosc/controller/cmd_vel", Twist)
 stop = publisher("/emergency_stop/stop", Empty)
+scan_pub = publisher("/scan", LaserScan)
+correction = publisher("/line/correction", Float32)
+scan_pub.publish(scan([5.0] * 360))
+correction.publish(Float32(data=10.0))
 stop.publish(Empty())
 assert wait_for(lambda: state.value("EmergencyStop") == "stopped", 5)
+assert wait_for(lambda: state.value("LineDetector") == "line_found", 5)
 
 def twist(x, z):
     message = Twist()
@@ -406,7 +427,7 @@ done({"events": [r["event"] for r in reports], "reasons": sorted({r["reason"] fo
     assert result["events"] == [None, None, None, None, "move"]
     assert result["reasons"] == [
         "a number in it is not finite",
-        "matches no event on the topic",
+        "is the data of no event on it now",
         "the supervisor does not allow it now",
     ]
     assert result["before_halt"] == 0
@@ -432,6 +453,8 @@ moves = {r: Recorder("/%s/cmd_vel" % r, Twist) for r in ("robot1", "robot2")}
 states = {r: Recorder("/%s/state" % r, String) for r in ("robot1", "robot2")}
 scans = {r: publisher("/%s/scan" % r, LaserScan) for r in ("robot1", "robot2")}
 global_moves = Recorder("/cmd_vel", Twist)
+for r in scans:
+    scans[r].publish(scan([5.0] * 360))
 assert wait_for(lambda: all(moves[r].messages() for r in moves), 10), "a robot got no movement"
 scans["robot1"].publish(scan([0.3] + [5.0] * 359))
 scans["robot2"].publish(scan([5.0] * 360))

@@ -79,6 +79,7 @@ class Graph:
                 **os.environ,
                 "ROS_DOMAIN_ID": str(self.domain),
                 "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+                "ROS_HOME": str(folder / "ros_home"),  # the controllers' persisted states: this run's own
                 "PYTHONUNBUFFERED": "1",
             }
 
@@ -114,8 +115,16 @@ class Graph:
         env = {**self.env, "PYTHONPATH": str(package)}
         return self._start(robot, [sys.executable, "-m", f"{module}.node", *args], env)
 
-    def dead(self) -> list[str]:
-        return [name for name, process in self.processes if process.poll() is not None]
+    def failed(self, sim: object) -> str | None:
+        """Why the run cannot go on: a process of the graph that ended (a controller killed or
+        crashed, the rosmaster), with its exit status and the simulated time; None if all run."""
+        for name, process in self.processes:
+            status = process.poll()
+            if status is not None and name != "simulator":
+                what = "the controller of " + name if name.startswith("robot") else name
+                how = f"killed by signal {-status}" if status < 0 else f"exit status {status}"
+                return f"{what} died at {getattr(sim, 'time', 0.0):.1f} s simulated ({how})"
+        return None
 
     def output(self, lines: int = 15) -> str:
         parts = []

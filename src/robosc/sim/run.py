@@ -163,11 +163,11 @@ def run_ros(
             on_start(graph)
         session.wait_for(bridge, session.connected(used, robots), 60 + 2 * robots, "the controllers to connect")
         started = time.monotonic()
-        ok, why = session.run(sim, bridge, timeout, speed, on_step, trace)
+        ok, why = session.run(sim, bridge, timeout, speed, on_step, trace, graph.failed)
         wall = time.monotonic() - started
-        dead = [n for n in graph.dead() if n != "simulator"]
-        if dead and ok:
-            ok, why = False, f"{', '.join(dead)} ended during the run"
+        died = graph.failed(sim) if ok else None  # at the very end
+        if died is not None:
+            ok, why = False, died
         return report(sim, ok, why, wall, str(folder))
     except session.SessionError as exc:
         raise session.SessionError(f"{exc}\n{graph.output()}") from None

@@ -78,8 +78,10 @@ def run(
     speed: float = 1.0,
     on_step: Callable[[Simulation], None] | None = None,
     trace: Trace | None = None,
+    failed: Callable[[Simulation], str | None] | None = None,
 ) -> tuple[bool, str]:
-    """Step until every robot reached its goal, one collided, or ``timeout`` simulated seconds;
+    """Step until every robot reached its goal, one collided, ``timeout`` simulated seconds
+    passed or ``failed(sim)`` says why the run cannot go on (a controller that died);
     returns (success, why it ended)."""
     started = time.monotonic()
     bridge.send("clock", t=sim.time)
@@ -92,6 +94,10 @@ def run(
             if message is None:
                 return False, "the simulator's node ended"
             _apply(sim, bridge, message, trace)
+        if failed is not None:
+            why = failed(sim)
+            if why is not None:
+                return False, why
         out = sim.step()
         bridge.send("clock", t=sim.time)
         publish(bridge, out, trace)

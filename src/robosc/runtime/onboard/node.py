@@ -192,6 +192,10 @@ class NodeCore(object):
             data_timeout=self.params["data_timeout"],
         )
         self.supervisor.send = self.send
+        # commands of the events performed since the last checkpoint: they go on the wire only
+        # once the state they lead to is persisted (write-ahead: a node killed in between comes
+        # back believing it sent them, never the other way round)
+        self.outbox: List[Callable[[], Any]] = []
         self.reported: Optional[Dict[str, Any]] = None  # the health last published
         self.state_file: Optional[StateFile] = None
         self.resumed = False
@@ -238,13 +242,20 @@ class NodeCore(object):
             self.supervisor.deliver(failed)
 
     def checkpoint(self) -> None:
-        """After each callback and cycle: persist the state if it changed, and report on
-        ``health`` (latched) when what the node holds changed."""
+        """After each callback and cycle: persist the state if it changed, then put the commands
+        of the events performed meanwhile on the wire, and report on ``health`` (latched) when
+        what the node holds changed."""
         if self.state_file is not None:
             try:
                 self.state_file.save(self.supervisor.persistent())
             except Exception as error:  # a full disk must not stop the node; said, and tried again
                 self.warnings("state not persisted: %s: %s" % (type(error).__name__, error), "persist")
+        outbox, self.outbox = self.outbox, []
+        for put in outbox:
+            try:
+                put()
+            except Exception as error:
+                self.warnings("not sent: %s: %s" % (type(error).__name__, error), "put")
         health = self.supervisor.health()
         if health != self.reported:
             before = self.reported
@@ -441,27 +452,34 @@ class NodeCore(object):
         if place is None:
             return True  # tau, reset, and data events have nothing to send
         if isinstance(place, Topic):
+            topic = place
             if self.mode == "supervisor":
-                return self.publish(place, data)  # the controller's own message, already checked
-            try:
-                message = fill(place.type(), data, place.name)
-            except Unsendable as error:
-                self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
-                return False
-            return self.publish(place, message)
+                message = data  # the controller's own message, already checked
+            else:
+                try:
+                    message = fill(topic.type(), data, topic.name)
+                except Unsendable as error:
+                    self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
+                    return False
+            self.outbox.append(lambda: self.publish(topic, message))
+            return True
+        call = place
         event = self.supervisor.EVENT[name]
         if self.mode == "supervisor":
-            return self.forward_call(place, event, data)
+            return self.forward_call(call, event, data)
         if event.kind == "cancel":
-            return self.cancel_goal(place)
+            self.outbox.append(lambda: self.cancel_goal(call))
+            return True
         try:
-            request = fill(place.request(), data, place.name)
+            request = fill(call.request(), data, call.name)
         except Unsendable as error:
             self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
             return False
-        if place.kind == "service":
-            return self.call_service(place, request)
-        return self.start_goal(place, request)
+        if call.kind == "service":
+            self.outbox.append(lambda: self.call_service(call, request))
+        else:
+            self.outbox.append(lambda: self.start_goal(call, request))
+        return True
 
     def forward_call(self, call: Call, event: Any, data: Any) -> bool:
         """Supervision layer: a call or goal is forwarded by the adapter's server callback."""

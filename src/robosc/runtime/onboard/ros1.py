@@ -227,6 +227,7 @@ class SupervisorNode(NodeCore):
                     call.goal += 1
                     number = call.goal
                     self.supervisor.settle()
+                    self.checkpoint()
             if not allowed:
                 server.set_aborted(text="blocked by the supervisor")
                 return
@@ -250,6 +251,7 @@ class SupervisorNode(NodeCore):
                         cancelled = call.cancel is not None and self.supervisor.perform(call.cancel.name)
                         if cancelled:
                             self.supervisor.settle()
+                            self.checkpoint()
                         else:
                             self.blocked(
                                 call.cancel.name if call.cancel else None,

@@ -324,6 +324,7 @@ class SupervisorNode(Node, NodeCore):
                     call.goal += 1
                     number = call.goal
                     self.supervisor.settle()
+                    self.checkpoint()
             if not allowed:
                 goal_handle.abort()
                 return call.type.Result()
@@ -378,6 +379,7 @@ class SupervisorNode(Node, NodeCore):
             with self.lock:
                 if call.cancel is not None and self.supervisor.perform(call.cancel.name):
                     self.supervisor.settle()
+                    self.checkpoint()
                     return CancelResponse.ACCEPT
                 self.blocked(
                     call.cancel.name if call.cancel else None, call.name, "the supervisor does not allow it now"
