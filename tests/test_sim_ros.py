@@ -124,3 +124,33 @@ def test_a_fleet_of_maze_solvers_on_one_ros2_graph(tmp_path: Path) -> None:
 
 def _logs(folder: Path) -> str:
     return "\n".join(f"--- {p.name}\n{p.read_text(errors='replace')[-2000:]}" for p in sorted((folder / "logs").glob("*.log")))
+
+
+@pytest.mark.parametrize("ros", [2, 1])
+def test_a_controller_that_dies_ends_the_run_with_who_and_when(tmp_path: Path, ros: int) -> None:
+    """kill -9 of robot1's controller in the middle of a run: robosc sim says which robot, at
+    what simulated time and how, and the run fails (before: it ran on until its timeout)."""
+    import signal
+
+    need(ros)
+    graphs: list[object] = []
+
+    def kill_at_five(sim: Simulation) -> None:
+        if sim.time >= 5.0 and graphs:
+            for name, process in graphs.pop().processes:  # type: ignore[attr-defined]
+                if name == "robot1":
+                    process.send_signal(signal.SIGKILL)
+
+    report = run(
+        ROOT / "examples" / "maze_solver.rscd",
+        "maze.yaml",
+        ros,
+        tmp_path,
+        timeout=150,
+        speed=4.0,
+        on_start=graphs.append,
+        on_step=kill_at_five,
+    )
+    assert not report.ok
+    assert re.fullmatch(r"the controller of robot1 died at 5\.\d s simulated \(killed by signal 9\)", report.why), report.why
+    assert report.simulated < 7.0
