@@ -1,13 +1,32 @@
 from __future__ import annotations
 
+import os
 import sys
+import uuid
 from pathlib import Path
 
 import pytest
 
+import strays
 from robosc.api import CheckResult, check_file
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Mark the suite's environment, inherited by every process a test starts (see strays.py);
+    .ci/run may have set the mark already, to check again after pytest exits."""
+    os.environ.setdefault(strays.MARK, uuid.uuid4().hex)
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    """A process a test started that is still running at the end fails the run."""
+    if hasattr(session.config, "workerinput"):
+        return  # a pytest-xdist worker: the controller checks, once
+    left = strays.strays(os.environ[strays.MARK])
+    if left:
+        session.config.get_terminal_writer().line("\n" + strays.report(left), red=True)
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED
 
 
 @pytest.fixture(autouse=True)

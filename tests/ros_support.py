@@ -24,6 +24,7 @@ from typing import Any
 
 import pytest
 
+from robosc import children
 from robosc.api import load_model, plan_supervisor, synthesize_model
 from robosc.codegen.ros import generate, package_name
 
@@ -103,7 +104,7 @@ class Processes:
     ) -> subprocess.Popen[bytes]:
         log = self.logs / f"{name}.log"
         handle = open(log, "wb")  # noqa: SIM115 (closed with the process)
-        process = subprocess.Popen(command, env=env, stdout=handle, stderr=subprocess.STDOUT, cwd=cwd)
+        process = children.start(command, env=env, stdout=handle, stderr=subprocess.STDOUT, cwd=cwd)
         self.running.append((process, log))
         return process
 
@@ -115,16 +116,9 @@ class Processes:
 
 
 def stop_all(processes: list[subprocess.Popen[bytes]]) -> None:
-    """Terminate processes, the last started first; kill what does not end in 10 s."""
-    for process in reversed(processes):
-        if process.poll() is None:
-            process.terminate()
-    for process in processes:
-        try:
-            process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait()
+    """End processes started by ``children.start`` and their groups, the last started first;
+    kill what does not end in 10 s."""
+    children.stop(processes)
 
 
 # ---- ROS 1 ---------------------------------------------------------------------------------

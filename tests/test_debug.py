@@ -160,6 +160,7 @@ robot Q {
             variable last: string = "a \\"quoted\\" \\\\ word"
             initial marked state s {
                 on response from hear do last := "x\\"y <b>"
+                on response from hear do last := "tab\\tnew\\nline\\rend"
             }
         }
     }
@@ -172,6 +173,8 @@ robot Q {
     tree = ET.fromstring(svg(d))  # Graphviz read the DOT, and its SVG is well-formed
     labels = ["".join(t.itertext()) for t in tree.iter() if t.tag.endswith("text")]
     assert 'do last := "x\\"y <b>"' in labels
+    # a tab, newline or carriage return in a string is shown as the model writes it: one line
+    assert 'do last := "tab\\tnew\\nline\\rend"' in labels
 
 
 def test_diagrams_without_the_dot_program_use_graphviz_as_webassembly(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -213,3 +216,26 @@ def test_nul_in_a_diagram_is_refused_before_graphviz() -> None:
 
     with pytest.raises(LayoutError, match="NUL"):
         to_svg('digraph { a [label="x\0y"] }')
+
+
+def test_plot_layout_is_bounded_whatever_the_log() -> None:
+    """Thousands of different events, long names, a ``$`` (matplotlib's mathematics) and a
+    long title: the rows, labels and marks the plot draws stay bounded."""
+    from robosc.debug.eventlog import Record
+    from robosc.debug.plot import COLUMNS, MAX_LABEL, MAX_ROWS, layout
+
+    records = [Record(i / 10, f"e{i % 5000}", i % 3 == 0, None, {}) for i in range(20_000)]
+    records += [Record(2000.0 + i, "frequent", False, None, {}) for i in range(100)]
+    records.append(Record(3000.0, "$\\frac{" + "x" * 900, True, None, {}))
+    shown = layout(records, title="t" * 10_000)
+    assert len(shown.rows) == MAX_ROWS
+    assert shown.rows[-1].label == "(4,943 other events)" and shown.rows[-1].controllable is None
+    assert sum(row.events for row in shown.rows) == len(records)  # every event is on some row
+    assert "frequent" in [row.label for row in shown.rows]  # the most frequent keep their rows
+    assert len(shown.points) <= MAX_ROWS * (COLUMNS + 1) * 2
+    assert all(len(row.label) <= MAX_LABEL + 1 for row in shown.rows)  # (+1: the backslash before $)
+    assert len(shown.title) == 120
+    few = layout(records[:50])
+    assert [row.label for row in few.rows] == [f"e{i}" for i in range(50)]  # first occurrence, all shown
+    assert sorted(row for _, row, _ in few.points) == list(range(50))
+    assert all(abs(x - row / 10) <= 4.9 / COLUMNS for x, row, _ in few.points)  # within a column of the time

@@ -15,6 +15,7 @@ from typing import Any
 
 import pytest
 
+from robosc import children
 from ros_support import free_port, unavailable, wait_until
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -54,7 +55,7 @@ def browser(tmp_path: Path) -> Iterator[Any]:
 
 def simulate(tmp_path: Path, port: int, *args: str) -> subprocess.Popen[bytes]:
     log = open(tmp_path / "simulate.log", "wb")  # noqa: SIM115 (closed with the process)
-    process = subprocess.Popen(
+    process = children.start(
         [sys.executable, "-m", "robosc", "simulate", *args, "--view", "--port", str(port)],
         stdout=log,
         stderr=subprocess.STDOUT,
@@ -126,8 +127,7 @@ def test_live_view_follows_a_scripted_run(browser: Any, tmp_path: Path) -> None:
         )
         assert feed[:3] == ["scan_front no_wall_front", "rotate_done", "turn_left 90"]  # enum data, converted
     finally:
-        process.terminate()
-        process.wait(timeout=10)
+        children.stop([process])
 
 
 def test_live_view_keeps_up_with_100_events_per_second(browser: Any, tmp_path: Path) -> None:
@@ -171,5 +171,4 @@ def test_live_view_keeps_up_with_100_events_per_second(browser: Any, tmp_path: P
             time.sleep(0.02)
         assert seen & {"executing", "ready", "error"}, seen
     finally:
-        process.terminate()
-        process.wait(timeout=10)
+        children.stop([process])

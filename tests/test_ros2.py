@@ -311,9 +311,15 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     blocked.clear()
     scan.publish(_scan([5.0] * 360))
     assert ros2.spin_until(lambda: _state(states).get("Distance.front") == "no_wall_front", 5)
+    assert ros2.spin_until(lambda: json.loads(states[-1].data)["health"]["held"] is False, 5), states[-1].data
     to_controller.clear()
     move.publish(forward)
-    assert ros2.spin_until(lambda: bool(robot_moves), 5), "an allowed command was not forwarded"
+    assert ros2.spin_until(lambda: bool(robot_moves), 5), (
+        "an allowed command was not forwarded",
+        [m.data for m in blocked],
+        states[-1].data,
+        ros2.processes.output(),
+    )
     left.publish(Int16(data=90))
     assert ros2.spin_until(lambda: bool(blocked), 5), "a forbidden command was not reported"
     assert json.loads(blocked[-1].data)["event"] == "turn_left"

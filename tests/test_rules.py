@@ -238,6 +238,11 @@ CASES = {
         (robot(component(OK_STATES, 'outgoing message m with identifier: "/a b", type: none')), "only letters"),
         (robot(component(OK_STATES, 'outgoing message m with identifier: "", type: none')), "empty"),
     ],
+    "package-name": [(robot().replace("robot R", "robot _R"), "a ROS package name begins with a letter")],
+    "text": [
+        (robot(component(OK_STATES, 'incoming message m with type: string'), 'provide m with "a\\0"'), "U+0000"),
+        (robot(component(OK_STATES, 'incoming message m with type: string'), 'provide m with "\x1b[2J"'), "U+001B"),
+    ],
     "enum-default": [
         (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
         (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
@@ -294,6 +299,8 @@ VALID = {
     ),
     "rule-14": robot("requirement act needs S.idle and S.active"),
     "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
+    "package-name": robot().replace("robot R", "robot R_"),
+    "text": robot(component(OK_STATES, "incoming message m with type: string"), 'provide m with "a\\tb\\n\\r\tc"'),
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
     "enum-values": robot("datatype enum E from double to { value > 1.0 or value < -1.0 -> big default -> small }"),
     "no-array": robot(

@@ -154,3 +154,44 @@ def test_a_controller_that_dies_ends_the_run_with_who_and_when(tmp_path: Path, r
     assert not report.ok
     assert re.fullmatch(r"the controller of robot1 died at 5\.\d s simulated \(killed by signal 9\)", report.why), report.why
     assert report.simulated < 7.0
+
+
+@pytest.mark.parametrize(("ros", "sig"), [(2, "SIGTERM"), (1, "SIGTERM"), (2, "SIGHUP"), (1, "SIGKILL")])
+def test_ending_robosc_sim_ends_every_process_it_started(tmp_path: Path, ros: int, sig: str) -> None:
+    """``kill -TERM`` (or -HUP) of a running ``robosc sim`` ends its controllers, the
+    simulator's node and the rosmaster within 5 s; ``kill -9`` too (they are asked to end when
+    their parent dies). Before: they ran on with parent 1."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import uuid
+
+    import strays
+    from robosc import children
+    from ros_support import wait_until
+
+    need(ros)
+    mark, variable = uuid.uuid4().hex, "ROBOSC_SIM_PROBE"
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
+    env[variable] = mark
+    args = ["sim", str(WORLDS / "maze.yaml"), str(ROOT / "examples" / "maze_solver.rscd"), "--ros", str(ros)]
+    args += ["--robots", "2", "--speed", "1", "--timeout", "200", "--domain", str(next(_domains) % 200 + 10)]
+    log = tmp_path / "sim.log"
+    with log.open("wb") as out:
+        process = children.start([sys.executable, "-m", "robosc", *args], env=env, stdout=out, stderr=subprocess.STDOUT)
+    try:
+        assert wait_until(lambda: "the robots run on" in log.read_text(errors="replace"), 90), log.read_text()
+        started = strays.marked(mark, variable)
+        started.pop(process.pid, None)
+        names = " ".join(started.values())
+        assert names.count("__ns:=/robot") == 2, started  # the two controllers
+        assert ("rosmaster" in names) == (ros == 1), started
+        os.kill(process.pid, getattr(signal, sig))
+        process.wait(timeout=30)
+        assert process.returncode == (-9 if sig == "SIGKILL" else 128 + getattr(signal, sig)), log.read_text()
+        left = strays.strays(mark, grace=5.0, variable=variable)
+        assert not left, strays.report(left)
+    finally:
+        children.stop([process])
+        strays.strays(mark, grace=0.0, variable=variable)

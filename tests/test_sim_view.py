@@ -17,6 +17,7 @@ from typing import Any
 
 import pytest
 
+from robosc import children
 from ros_support import _domains, free_port, ros1_available, ros2_available, stop_all, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
 
@@ -32,7 +33,7 @@ class Run:
 
     def start(self, name: str, args: list[str], env: dict[str, str]) -> subprocess.Popen[bytes]:
         log = open(self.tmp_path / f"{name}.log", "wb")  # noqa: SIM115 (closed with the process)
-        process = subprocess.Popen([sys.executable, "-m", "robosc", *args], env=env, stdout=log, stderr=subprocess.STDOUT)
+        process = children.start([sys.executable, "-m", "robosc", *args], env=env, stdout=log, stderr=subprocess.STDOUT)
         self.processes.append((name, process))
         return process
 

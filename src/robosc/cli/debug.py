@@ -30,13 +30,17 @@ def plot(log: str, output: str, title: str | None) -> None:
     if Path(output).suffix not in (".png", ".svg", ".pdf"):
         raise input_problem(f"{output}: the plot is written as .png, .svg or .pdf")
     records = _records(log)
+    from robosc.debug.plot import MAX_ROWS
     from robosc.debug.plot import plot as draw
 
     try:
         draw(records, output, title)
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
+    names = len({r.event for r in records})
     click.echo(f"wrote {output}: {len(records):,} events")
+    if names > MAX_ROWS:
+        click.echo(f"{names:,} different events: the {MAX_ROWS - 1} most frequent have a row each, the others share one")
     raise exit_with(EXIT_OK)
 
 

@@ -23,6 +23,7 @@ import importlib
 import click
 
 from robosc import __version__
+from robosc.children import Terminated, ending_on_signals
 
 EXIT_INTERNAL = 3
 
@@ -66,13 +67,18 @@ def cli() -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     try:
-        code = cli.main(args=list(argv) if argv is not None else None, prog_name="robosc", standalone_mode=False)
+        with ending_on_signals():  # SIGTERM and SIGHUP unwind like Ctrl-C: children are ended
+            code = cli.main(args=list(argv) if argv is not None else None, prog_name="robosc", standalone_mode=False)
+    except Terminated as exc:
+        return 128 + exc.signum
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.Abort:
+    except click.Abort as exc:  # click's name for a KeyboardInterrupt (or Terminated) it caught
+        if isinstance(exc.__cause__, Terminated):
+            return 128 + exc.__cause__.signum
         click.echo("robosc: aborted", err=True)
         return 130
     except KeyboardInterrupt:

@@ -33,6 +33,10 @@ SCHEMA = {
 }
 
 
+MAX_TIME = float(((1 << 64) - 1) // 10**9)  # seconds: MCAP stamps messages in unsigned 64-bit nanoseconds
+MAX_EVENT = 1000  # characters of an event's name (a model's names have at most 100; the rest is room)
+
+
 class LogError(Exception):
     """The log cannot be read; the message names the file and line."""
 
@@ -59,15 +63,27 @@ def _record(raw: Any, where: str) -> Record:
     if not isinstance(raw, dict):
         raise LogError(f"{where}: not an event record (a JSON object)")
     try:
-        time = float(raw["time"])
-        event = str(raw["event"])
+        time = raw["time"]
+        event = raw["event"]
         controllable = raw["controllable"]
-    except (KeyError, TypeError, ValueError) as error:
-        raise LogError(f"{where}: an event record needs time, event and controllable ({error})") from None
+    except KeyError as error:
+        raise LogError(f"{where}: an event record needs time, event and controllable (no {error})") from None
+    if isinstance(time, bool) or not isinstance(time, (int, float)) or not 0 <= time <= MAX_TIME:
+        raise LogError(
+            f"{where}: 'time' must be a number of seconds from 0 to {MAX_TIME:.0f} "
+            f"(the nanoseconds of an MCAP log), not {_shown(time)}"
+        )
+    if not isinstance(event, str) or not event or len(event) > MAX_EVENT:
+        raise LogError(f"{where}: 'event' must be a name of 1 to {MAX_EVENT} characters, not {_shown(event)}")
     if not isinstance(controllable, bool):
         raise LogError(f"{where}: 'controllable' must be true or false")
     state = raw.get("state") or {}
-    return Record(time, event, controllable, raw.get("data"), state if isinstance(state, dict) else {})
+    return Record(float(time), event, controllable, raw.get("data"), state if isinstance(state, dict) else {})
+
+
+def _shown(value: Any) -> str:
+    text = json.dumps(value) if isinstance(value, (str, int, float)) else type(value).__name__
+    return text if len(text) <= 40 else text[:37] + "..."
 
 
 MAX_LOG_BYTES = 1 << 30

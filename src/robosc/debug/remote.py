@@ -6,6 +6,7 @@ on this machine's 127.0.0.1, fed as if the node served it itself.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import subprocess
 import sys
@@ -15,6 +16,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
+from robosc import children
 from robosc.jsonlines import LinePeer, PeerGone
 
 LISTENER = Path(__file__).resolve().parent / "remote_listener.py"
@@ -36,7 +38,7 @@ class Listener:
             env = dict(os.environ)
         env["PYTHONUNBUFFERED"] = "1"
         try:
-            self.process = subprocess.Popen(
+            self.process = children.start(
                 [python, str(LISTENER), str(ros), str(discover)],
                 env=env,
                 stdin=subprocess.PIPE,
@@ -88,11 +90,9 @@ class Listener:
 
     def close(self) -> None:
         self.peer.quit()
-        try:
+        with contextlib.suppress(subprocess.TimeoutExpired):
             self.process.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
+        children.stop([self.process], grace=5)
 
 
 def find_robots(listener: Listener, timeout: float = 60.0) -> list[str]:

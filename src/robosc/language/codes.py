@@ -55,6 +55,9 @@ class Code(str, Enum):
     CONSTANT = "constant", "a constant part of an expression cannot be computed (division by zero)"
     ROS = "ros", "the model cannot be generated for ROS as it is (code generation)"
     RANGE = "range", "a constant is outside the range of the integer it is assigned to"
+    # what the build turns into names and text outside the model
+    PACKAGE_NAME = "package-name", "a robot's name begins with a letter (it names a ROS package, node and files)"
+    TEXT = "text", "a string holds no NUL or other control character but tab, newline and carriage return"
     # warnings that catch modelling mistakes
     IMPLICIT_START = "implicit-start", "warning: a guard or requirement reads an enum variable with no initial value"
     NEVER_ALLOWED = "never-allowed", "warning: synthesis disables a controllable event everywhere"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from enum import Enum
 
@@ -72,13 +73,16 @@ def sort_key(diagnostic: Diagnostic) -> tuple[str, int, int]:
 SHOWN = 120  # at most this much of a long source line is shown under a diagnostic
 
 
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
+
+
 def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> str:
     """``path:line:col: error: message``, then the source line and a caret under the span."""
     span = diagnostic.span
     lines = [f"{span}: {diagnostic.severity.value}: {diagnostic.message}"]
     source = sources.get(span.path)
     if source is not None and span.line > 0:
-        text = source.line_text(span.line).expandtabs(1)
+        text = _CONTROL.sub("?", source.line_text(span.line).expandtabs(1))  # shown, never sent to the terminal
         if text.strip():
             width = (span.end_column - span.column) if span.end_line == span.line else 1
             width = max(1, min(width, len(text) - span.column + 1))

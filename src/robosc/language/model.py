@@ -463,6 +463,7 @@ class Model:
     interfaces: tuple[Interface, ...]
     requirements: tuple[Requirement, ...] = ()
     provides: tuple[Provide, ...] = ()
+    name_span: Span | None = None  # where the robot or library is named
 
     @property
     def communications(self) -> tuple[Communication, ...]:

@@ -38,13 +38,16 @@ def steps(path: tuple[m.Step, ...]) -> str:
     return "".join(f"[{s.index}]" if isinstance(s, m.IndexStep) else f".{escape_name(s.property.name)}" for s in path)
 
 
+_ESCAPED = {"\\": "\\\\", '"': '\\"', "\n": "\\n", "\t": "\\t", "\r": "\\r", "\b": "\\b", "\f": "\\f", "\0": "\\0"}
+
+
 def literal(value: object) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
         return repr(value) if "." in repr(value) else f"{value:.1f}"
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+    if isinstance(value, str):  # the language's own escapes: one line, no control character
+        return '"' + "".join(_ESCAPED.get(c, c) for c in value) + '"'
     if isinstance(value, m.EnumValue):
         return escape_name(value.name)
     return str(value)

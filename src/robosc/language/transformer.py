@@ -17,6 +17,7 @@ from robosc.language.source import Span
 
 MAX_INT = 2**63 - 1
 MAX_STRING = 65536
+MAX_NAME = 100  # names become package, node and file names (diagrams: plant_<component>_<comm>.svg)
 MAX_EXPRESSION_DEPTH = 100  # the depth of an expression tree: later stages recurse over it, and
 # generated Python code nests it in parentheses (CPython reads at most 200 levels)
 
@@ -34,6 +35,7 @@ class SyntaxProblem(Exception):
 
 _ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "b": "\b", "f": "\f", "0": "\0"}
 _ESCAPE = re.compile(r"\\(.)", re.DOTALL)
+_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
 
 
 def _unescape_string(raw: str) -> str:
@@ -133,7 +135,15 @@ class SyntaxBuilder:
             raise SyntaxProblem(
                 self._span(meta), f"'{text}' is a keyword, not a name", f"write '^{text}' to use it as a name"
             )
-        return s.Name(text[1:] if text.startswith("^") else text, self._span(meta))
+        name = text[1:] if text.startswith("^") else text
+        if len(name) > MAX_NAME:
+            raise SyntaxProblem(
+                self._span(meta),
+                f"name of {len(name)} characters is too long (at most {MAX_NAME}: names become file, "
+                "package and ROS names)",
+                code=Code.LIMIT,
+            )
+        return s.Name(name, self._span(meta))
 
     # -- components ------------------------------------------------------------
     def local_component(self, meta: Meta, ch: list[Any]) -> s.LocalComponentSyntax:
@@ -330,7 +340,35 @@ class SyntaxBuilder:
                 f"string of {len(raw) - 2} characters is too long (at most {MAX_STRING})",
                 code=Code.LIMIT,
             )
-        return s.StrLit(raw, _unescape_string(raw), self._span(meta))
+        value = _unescape_string(raw)
+        control = _CONTROL.search(value)
+        if control is not None:
+            raise SyntaxProblem(
+                self._control_span(meta, raw),
+                f"the string holds the control character U+{ord(control.group()):04X}: a NUL ends a ROS "
+                "string, and the others garble diagrams, logs and terminals",
+                "only tab (\\t), newline (\\n) and carriage return (\\r) are allowed in strings",
+                code=Code.TEXT,
+            )
+        return s.StrLit(raw, value, self._span(meta))
+
+    def _control_span(self, meta: Meta, raw: str) -> Span:
+        """The span of the first control character of the literal ``raw`` as written: the
+        character itself or its backslash escape."""
+        at = 1
+        while at < len(raw) - 1:
+            size = 2 if raw[at] == "\\" else 1
+            char = _ESCAPES.get(raw[at + 1], raw[at + 1]) if size == 2 else raw[at]
+            if _CONTROL.match(char):
+                break
+            at += size
+        else:
+            return self._span(meta)
+        before = raw[:at]
+        line = meta.line + self.lines + before.count("\n")
+        column = at - before.rfind("\n") if "\n" in before else meta.column + at
+        start = meta.start_pos + self.offset + at
+        return Span(self.path, line, column, line, column + size, start, start + size)
 
     def bool_literal(self, meta: Meta, ch: list[Token]) -> s.BoolLit:
         return s.BoolLit(str(ch[0]) == "true", self._span(meta))

@@ -15,6 +15,7 @@ import sys
 import time
 from pathlib import Path
 
+from robosc import children
 from robosc.sim.session import Bridge, SessionError
 
 BRIDGE_PACKAGE = "robosc_sim_bridge"
@@ -85,7 +86,7 @@ class Graph:
 
     def _start(self, name: str, command: list[str], env: dict[str, str], pipe: bool = False) -> subprocess.Popen[bytes]:
         log = open(self.logs / f"{name}.log", "wb")  # noqa: SIM115 (kept open by the process)
-        process = subprocess.Popen(
+        process = children.start(
             command,
             env=env,
             stdout=subprocess.PIPE if pipe else log,
@@ -135,15 +136,7 @@ class Graph:
         return "\n".join(parts)
 
     def stop(self) -> None:
-        for _, process in reversed(self.processes):
-            if process.poll() is None:
-                process.terminate()
-        for _, process in self.processes:
-            try:
-                process.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
+        children.stop([process for _, process in self.processes])
 
 
 def _text(value: object) -> str:

@@ -25,6 +25,7 @@ from robosc.language.checks import (
     object_variables,
     one_behaviour,
     own_variables,
+    package_name,
     provide_direction,
     result_types,
     shared_topics,
@@ -61,6 +62,7 @@ CHECKS: tuple[Check, ...] = (
     variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
     implicit_start.check,  # warning: an enum variable read with no initial value
     limits.check,  # sizes synthesis cannot represent
+    package_name.check,  # a robot's name names a ROS package: a letter first
 )
 
 

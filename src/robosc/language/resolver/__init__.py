@@ -238,6 +238,7 @@ def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> Resolv
         tuple(resolver.scope.interfaces),
         requirements,
         provides,
+        file.name.span,
     )
     unique = tuple(dict.fromkeys(resolver.reporter.diagnostics))
     # a component named in an expression was referred to by its tables: name the component

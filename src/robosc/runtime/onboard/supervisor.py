@@ -391,8 +391,7 @@ class Supervisor(object):
         if self._unreadable_since:
             self._watch()
         if self._dirty:
-            self._provide()
-            self._enabled = self._allowed() if not self.stale else self._filter(self._allowed())
+            self._enabled = self._current()
             self._sent = {}
             self._dirty = False
         enabled = self._enabled
@@ -409,8 +408,13 @@ class Supervisor(object):
             return ()
         if self._unreadable_since:
             self._watch()
-        self._provide()
         self._dirty = True
+        return self._current()
+
+    def _current(self) -> Tuple[Callable[..., Optional[str]], ...]:
+        """The controllable events allowed in this state, with the provided data computed and
+        the events reading unreadable data taken out (the caller checked ``waiting``)."""
+        self._provide()
         allowed = self._allowed()
         return self._filter(allowed) if self.stale else allowed
 
