@@ -261,7 +261,7 @@ report["held"] = json.loads(blocked.messages()[-1].data)["reason"]
 blocked.clear()
 scan_pub.publish(scan([5.0] * 360))
 assert wait_for(lambda: state.value("Distance.front") == "no_wall_front", 5)
-rospy.sleep(0.2)
+assert wait_for(lambda: state.last()["health"]["held"] is False, 5), state.last()  # (no_wall_front is also the start)
 controller_move.publish(forward)  # the way is free: allowed
 assert wait_for(lambda: robot_moves.messages(), 5), "an allowed command was not forwarded"
 controller_left.publish(Int16(data=90))  # no wall in front: turning left is not allowed
