@@ -17,6 +17,11 @@ def pytest_configure(config: pytest.Config) -> None:
     """Mark the suite's environment, inherited by every process a test starts (see strays.py);
     .ci/run may have set the mark already, to check again after pytest exits."""
     os.environ.setdefault(strays.MARK, uuid.uuid4().hex)
+    # GNU readline (which pytest imports) writes COLUMNS=80 into the process's environment,
+    # where os.environ does not see it but subprocesses do; robosc fits its output to COLUMNS,
+    # and the tests read it as piped (tests that want a width set COLUMNS themselves)
+    os.environ.pop("COLUMNS", None)
+    os.unsetenv("COLUMNS")
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:

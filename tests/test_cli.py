@@ -142,3 +142,44 @@ def test_platform_claims_match_what_installs():
         if found:
             assert tuple(int(x) for x in found.groups()) <= lowest, (dependency, needed, ours)
     assert f"Python {lowest[0]}.{lowest[1]} or newer" in (root / "README.md").read_text()
+
+
+def run_in(columns: str | None, *args: str) -> subprocess.CompletedProcess[str]:
+    import os
+
+    env = {k: v for k, v in os.environ.items() if k != "COLUMNS"}
+    if columns is not None:
+        env["COLUMNS"] = columns
+    return subprocess.run(
+        [sys.executable, "-m", "robosc", *args], capture_output=True, text=True, timeout=120, check=False, env=env
+    )
+
+
+@pytest.mark.parametrize("example", sorted(p.name for p in EXAMPLES.glob("*.rscd") if p.name != "emergency_stop.rscd"))
+def test_synthesize_fits_the_width_columns_asks_for(example: str) -> None:
+    """COLUMNS=100: no line of the table, the explanations or the warnings is wider (before:
+    rows of 261 characters, warnings of over 600); piped without COLUMNS, each condition and
+    warning stays on one line, for programs that read it."""
+    narrow = run_in("100", "synthesize", str(EXAMPLES / example))
+    assert narrow.returncode == 0, narrow.stderr
+    lines = (narrow.stdout + narrow.stderr).splitlines()
+    assert max(len(line) for line in lines) <= 100, max(lines, key=len)
+    piped = run_in(None, "synthesize", str(EXAMPLES / example))
+    assert len(piped.stdout.splitlines()) <= len(narrow.stdout.splitlines())
+    warnings = [line for line in piped.stderr.splitlines() if ": warning: " in line]
+    assert len(warnings) == piped.stderr.count(": warning: ")  # one line each
+    if example == "maze_solver.rscd":
+        row = next(line for line in piped.stdout.splitlines() if "│ movement " in line)
+        assert row.rstrip().endswith("no_wall_diag_right)) │ -                  │") and len(row) > 200
+
+
+def test_explicit_synthesis_says_it_is_a_cross_check_with_the_figures_it_compares() -> None:
+    """Before: an empty table and '0 of 0 controllable events'."""
+    done = run_in(None, "synthesize", "--explicit", str(EXAMPLES / "shelf_picker.rscd"))
+    assert done.returncode == 0, done.stderr
+    assert "explicit-state synthesis of ShelfPicker (a cross-check of the symbolic method" in done.stdout
+    assert "controlled system: 1218 reachable states" in done.stdout
+    assert "symbolic synthesis: 1218 reachable states, a condition added to 1 of 10 controllable events; they agree" in done.stdout
+    assert "0 of 0" not in done.stdout
+    data = json.loads(run_in(None, "synthesize", "--explicit", "--json", str(EXAMPLES / "maze_solver.rscd")).stdout)
+    assert data["cross_check"] == {"method": "symbolic", "reachable_states": 128, "agree": True}

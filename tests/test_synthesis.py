@@ -366,3 +366,28 @@ def test_exact_state_count_agrees_with_cudd_where_cudd_is_exact():
         ]
         u = bdd.add_expr(" \\/ ".join(f"({c})" for c in clauses))
         assert _minterms(bdd, u, len(names)) == int(bdd.count(u, nvars=len(names)))
+
+
+def test_an_action_no_component_cancels_is_never_cancelled_and_draws_no_warning() -> None:
+    """A battery dock with no 'on cancel to dock' (before: 'dock.c_cancel' never allowed, with
+    the condition '!Base.needs_charge' the user never wrote); with one, the supervisor cancels
+    a running dock exactly when its requirement stops holding, as before."""
+    from pathlib import Path
+
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    text = (Path(__file__).parent / "network" / "s1_action_never_cancelled.rscd").read_text()
+    model = check_text(text).model
+    assert model is not None
+    result = synthesize_model(model)
+    assert result.ok
+    assert [g.event.name for g in result.guards] == ["dock.c_trigger", "dock.c_reset"]
+    assert synthesis_warnings(result) == []
+    cancelling = text.replace(
+        "on error from dock goto needs_charge", "on error from dock goto needs_charge\n on cancel to dock goto roaming"
+    )
+    model = check_text(cancelling).model
+    assert model is not None
+    result = synthesize_model(model)
+    cancel = result.guard("dock.c_cancel")
+    assert cancel.required is not None and render(cancel.required) == "!Base.needs_charge"

@@ -71,9 +71,10 @@ class CheckResult:
     def errors(self) -> tuple[Diagnostic, ...]:
         return tuple(d for d in self.diagnostics if d.is_error)
 
-    def render(self) -> str:
-        """All diagnostics as text: ``path:line:col: error: message``, source line, caret."""
-        return "\n".join(render_text(d, self.sources) for d in self.diagnostics)
+    def render(self, columns: int | None = None) -> str:
+        """All diagnostics as text: ``path:line:col: error: message``, source line, caret;
+        with ``columns``, wrapped to that width."""
+        return "\n".join(render_text(d, self.sources, columns) for d in self.diagnostics)
 
 
 class ModelError(Exception):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from robosc.api import InputError, check_file
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, width
 from robosc.language.diagnostics import Diagnostic, to_json
 
 
@@ -41,7 +41,7 @@ def check(files: tuple[str, ...], include: tuple[str, ...], output: str, list_co
         failed = failed or not result.ok
         if output == "text":
             if result.diagnostics:
-                click.echo(result.render(), err=not result.ok)
+                click.echo(result.render(width(err=not result.ok)), err=not result.ok)
             if result.ok:
                 warnings = len(result.diagnostics)
                 suffix = f" ({warnings} warning{'s' if warnings != 1 else ''})" if warnings else ""

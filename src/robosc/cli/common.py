@@ -41,13 +41,30 @@ def include_option(f: Callable[..., Any]) -> Callable[..., Any]:
     )(f)
 
 
+def width(err: bool = False) -> int | None:
+    """The width to fit standard output (or error) to: COLUMNS, else the terminal's; None
+    when it is piped."""
+    import sys
+
+    from robosc.cli.table import terminal_width
+
+    return terminal_width(sys.stderr if err else sys.stdout)
+
+
+def say(text: str, err: bool = False) -> None:
+    """``click.echo`` of prose, wrapped to the terminal (or COLUMNS); unwrapped when piped."""
+    from robosc.cli.table import fill
+
+    click.echo(fill(text, width(err)), err=err)
+
+
 def exit_with(code: int) -> click.exceptions.Exit:
     """The exception that ends a command with exit code ``code`` (messages already printed)."""
     return click.exceptions.Exit(code)
 
 
 def input_problem(message: str) -> click.exceptions.Exit:
-    click.echo(f"robosc: error: {message}", err=True)
+    say(f"robosc: error: {message}", err=True)
     return exit_with(EXIT_USAGE)
 
 
@@ -61,7 +78,7 @@ def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
     except InputError as exc:
         raise input_problem(str(exc)) from None
     except ModelError as exc:
-        click.echo(exc.result.render(), err=True)
+        click.echo(exc.result.render(width(err=True)), err=True)
         raise exit_with(EXIT_MODEL_ERRORS) from None
     if model.kind != "robot":
         raise input_problem(f"{file} is a library; {purpose} needs a robot")

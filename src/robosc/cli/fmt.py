@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from robosc.api import CheckResult, InputError, format_text
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, input_problem
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, input_problem, width
 from robosc.language.loader import read_source
 
 
@@ -23,7 +23,7 @@ def fmt(file: str, check_only: bool, write: bool) -> None:
         raise input_problem(str(exc)) from None
     formatted = format_text(source.text, source.path)
     if isinstance(formatted, CheckResult):
-        click.echo(formatted.render(), err=True)
+        click.echo(formatted.render(width(err=True)), err=True)
         raise exit_with(EXIT_MODEL_ERRORS)
     if check_only:
         if formatted != source.text:

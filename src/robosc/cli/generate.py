@@ -6,7 +6,16 @@ from pathlib import Path
 
 import click
 
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, supervised
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    exit_with,
+    include_option,
+    input_problem,
+    say,
+    supervised,
+    width,
+)
 
 MODE = click.option(
     "--mode",
@@ -25,7 +34,7 @@ def live_page(result: object) -> str | None:
     try:
         return render_page(result)  # type: ignore[arg-type]
     except LayoutError as exc:
-        click.echo(f"robosc: note: no live view page in the package (Graphviz: {exc})", err=True)
+        say(f"robosc: note: no live view page in the package (Graphviz: {exc})", err=True)
         return None
 
 
@@ -58,7 +67,7 @@ def _write_package(
         from robosc.language.diagnostics import error, render_text
 
         sources = check_file(file, include).sources
-        click.echo(render_text(error(exc.span, str(exc), Code.ROS), sources), err=True)
+        click.echo(render_text(error(exc.span, str(exc), Code.ROS), sources, width(err=True)), err=True)
         raise exit_with(EXIT_MODEL_ERRORS) from None
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
@@ -82,7 +91,7 @@ def generate(file: str, ros: str, mode: str, output: str, relative_names: bool, 
     """Generate a ROS package running the synthesized supervisor."""
     result, plan = supervised(file, include, "code generation")
     written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result), relative_names)
-    click.echo(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
+    say(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
     raise exit_with(EXIT_OK)
 
 
@@ -100,7 +109,7 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
 
     result, plan = supervised(file, include, "a build")
     out = Path(output)
-    click.echo(
+    say(
         f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "
         f"{result.reachable_states:,} reachable states, {len(result.added_guards)} added guards"
     )
@@ -108,17 +117,17 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
     for ros in (1, 2):
         target = out / f"ros{ros}"
         written = _write_package(plan, ros, mode, target, file, include, page, relative_names)
-        click.echo(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
+        say(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
     try:
         module = out / f"{module_name(plan)}.py"
         module.write_text(render_module(plan, relative_names), encoding="utf-8")
         (out / RUNTIME_PACKAGE).mkdir(exist_ok=True)
         for name, text in runtime_files().items():
             (out / RUNTIME_PACKAGE / name).write_text(text, encoding="utf-8")
-        click.echo(f"  stand-alone supervisor: {module} (runtime: {out / RUNTIME_PACKAGE})")
+        say(f"  stand-alone supervisor: {module} (runtime: {out / RUNTIME_PACKAGE})")
         cif_path = out / f"{plan.robot}.cif"
         cif_path.write_text(to_cif(result.network, Path(file).name), encoding="utf-8")
-        click.echo(f"  CIF: {cif_path}")
+        say(f"  CIF: {cif_path}")
     except OSError as exc:
         raise input_problem(f"{output}: cannot write: {exc.strerror or exc}") from None
     raise exit_with(EXIT_OK)

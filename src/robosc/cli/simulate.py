@@ -15,6 +15,7 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
+    say,
     supervised,
     view_port_option,
 )
@@ -105,7 +106,7 @@ def simulate(
             raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
         sinks.append(live.publish)
         closers.append(live.close)
-        click.echo(f"live view: {live.url}")
+        say(f"live view: {live.url}")
 
     def on_event(record: dict[str, Any]) -> None:
         for sink in sinks:
@@ -122,21 +123,21 @@ def simulate(
         else:
             code = _interactive(sim)
         if live is not None and code == EXIT_OK and (script is not None or steps is not None):
-            click.echo(f"still serving the live view on {live.url}; Ctrl-C to stop")
+            say(f"still serving the live view on {live.url}; Ctrl-C to stop")
             _show_state(sim)
             _wait_forever()
     except Violation as violation:
-        click.echo(f"robosc: violation at {violation}", err=True)
+        say(f"robosc: violation at {violation}", err=True)
         code = EXIT_MODEL_ERRORS
     except OSError as exc:  # the event log: disk full, a closed pipe
-        click.echo(f"robosc: error: {log_path or 'output'}: cannot write: {exc.strerror or exc}", err=True)
+        say(f"robosc: error: {log_path or 'output'}: cannot write: {exc.strerror or exc}", err=True)
         code = EXIT_USAGE
     finally:
         for close in closers:
             try:
                 close()
             except OSError as exc:
-                click.echo(f"robosc: error: {log_path}: cannot write: {exc.strerror or exc}", err=True)
+                say(f"robosc: error: {log_path}: cannot write: {exc.strerror or exc}", err=True)
                 code = EXIT_USAGE
     if code == EXIT_OK:
         _show_state(sim)
@@ -157,12 +158,12 @@ def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
     if not quiet:
         steps = outcome.steps or (sim.step,) * len(outcome.events)
         for step, event in zip(steps, outcome.events, strict=True):
-            click.echo(f"  {step:>4}  {event}")
+            say(f"  {step:>4}  {event}")
         for message in outcome.messages:
-            click.echo(f"        {message}")
+            say(f"        {message}")
     if not quiet:
         for warning in sim.warnings:
-            click.echo(f"        warning: {warning}", err=True)
+            say(f"        warning: {warning}", err=True)
         sim.warnings.clear()
 
 
@@ -182,7 +183,7 @@ def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
             outcome = sim.run(line)
         except CommandError as exc:
             column = len(line) - len(line.lstrip()) + 1
-            click.echo(f"{path}:{number}:{column}: error: {exc}", err=True)
+            say(f"{path}:{number}:{column}: error: {exc}", err=True)
             return EXIT_USAGE
         _report(sim, outcome, quiet)
     return EXIT_OK
@@ -197,11 +198,11 @@ def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool, rate: flo
         _report(sim, sim.random_step(rng), quiet)
         if rate is not None:
             time.sleep(max(0.0, start + (number + 1) / rate - time.monotonic()))
-    click.echo(
+    say(
         f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable"
     )
     if sim.warnings:
-        click.echo(f"{len(sim.warnings)} warnings about data, e.g.: {sim.warnings[0]}")
+        say(f"{len(sim.warnings)} warnings about data, e.g.: {sim.warnings[0]}")
     return EXIT_OK
 
 
@@ -214,14 +215,14 @@ def _show_state(sim: Simulator) -> None:
     rows += [(name, location) for name, location in snapshot["communications"].items() if location != "idle"]
     rows += [(name, str(value)) for name, value in snapshot["variables"].items()]
     click.echo(listing(("automaton / variable", "value"), rows))
-    click.echo("allowed: " + (", ".join(sim.allowed()) or "(none)"))
-    click.echo("robot events possible: " + (", ".join(sim.expected()) or "(none)"))
+    say("allowed: " + (", ".join(sim.allowed()) or "(none)"))
+    say("robot events possible: " + (", ".join(sim.expected()) or "(none)"))
 
 
 def _interactive(sim: Simulator) -> int:
     from robosc.runtime.simulator import CommandError, Violation
 
-    click.echo(f"simulating {sim.network.model.name}; 'help' lists the commands")
+    say(f"simulating {sim.network.model.name}; 'help' lists the commands")
     _show_state(sim)
     while True:
         try:
@@ -240,10 +241,10 @@ def _interactive(sim: Simulator) -> int:
         try:
             _report(sim, sim.run(line), False)
         except CommandError as exc:
-            click.echo(f"error: {exc}")
+            say(f"error: {exc}")
             continue
         except Violation as exc:  # a failed expect (or a check): report it, the session goes on
-            click.echo(f"failed: {exc}")
+            say(f"failed: {exc}")
             continue
         if word:
             _show_state(sim)

@@ -8,8 +8,8 @@ from typing import Any
 import click
 
 from robosc.api import SynthesisResult, synthesize_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot
-from robosc.cli.table import Cell, boxed, terminal_width
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, width
+from robosc.cli.table import Cell, boxed, fill
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
@@ -70,28 +70,36 @@ def print_warnings(warnings: list[Diagnostic]) -> None:
     for path in {d.span.path for d in warnings}:
         with contextlib.suppress(InputError):
             sources[path] = read_source(path)
+    columns = width(err=True)
     for diagnostic in warnings:
-        click.echo(render_text(diagnostic, sources), err=True)
+        click.echo(render_text(diagnostic, sources, columns), err=True)
 
 
-def print_result(result: SynthesisResult) -> None:
-    # piped to a file or another program: no terminal width to respect, so each condition
-    # stays on one line
-    width = terminal_width()
+def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = None) -> None:
+    # fitted to the terminal (or COLUMNS); piped to a file or another program without
+    # COLUMNS, each condition and sentence stays on one line
+    columns = width()
+
+    def say(text: str, indent: str = "    ") -> None:
+        click.echo(fill(text, columns, indent))
+
     name = result.network.model.name
     if not result.ok:
         explanation = result.explanation
         assert explanation is not None
         failed = click.style("synthesis failed", fg="red", bold=True)
         click.echo(f"{failed} for {name}: no supervisor can keep the requirements")
-        click.echo(f"  initial state: {explanation.initial_state}")
+        say(f"  initial state: {explanation.initial_state}")
         if explanation.path:
             click.echo("  uncontrollable events from the initial state:")
             for number, step in enumerate(explanation.path, 1):
-                click.echo(f"    {number}. {step.event.name}  ->  {step.state}")
+                say(f"    {number}. {step.event.name}  ->  {step.state}", "      ")
         else:
             click.echo("  (the problem is already in the initial state)")
-        click.echo(f"  why: {explanation.reason}")
+        say(f"  why: {explanation.reason}")
+        return
+    if result.method == "explicit":
+        _print_cross_check(result, cross_check, say)
         return
     rows = []
     for guard in result.guards:
@@ -99,18 +107,34 @@ def print_result(result: SynthesisResult) -> None:
         added = Cell(render(guard.added)) if guard.added is not None else "-"
         rows.append((guard.event.name, required, added))
     headers = ("controllable event", "your condition", "added by synthesis")
-    click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=width))
+    click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=columns))
     restrictions = [r for r in (result.why(g.event) for g in result.added_guards) if r is not None]
     if restrictions:
         click.echo("why synthesis added these conditions:")
         for restriction in restrictions:
             for line in why_lines(restriction):
-                click.echo("  " + line)
-    click.echo(
+                say("  " + line, "      ")
+    say(
         f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled system; "
         f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
-        f"{result.seconds * 1000:.1f} ms"
+        f"{result.seconds * 1000:.1f} ms",
+        "",
     )
+
+
+def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None, say: Any) -> None:
+    """Explicit-state synthesis computes the supervisor's states, not conditions per event: it
+    is a cross-check of the symbolic method, and says so with the figures it compares."""
+    plant = result.details.get("plant_states")
+    say(f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
+        "it computes states, not conditions per event):", "    ")
+    say(f"  uncontrolled plant: {plant} states; controlled system: {result.reachable_states} reachable states "
+        f"({result.seconds * 1000:.1f} ms)", "    ")
+    if symbolic is not None:
+        agree = symbolic.ok == result.ok and symbolic.reachable_states == result.reachable_states
+        verdict = "they agree" if agree else click.style("they DISAGREE: please report this model", fg="red", bold=True)
+        say(f"  symbolic synthesis: {symbolic.reachable_states} reachable states, a condition added to "
+            f"{len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events; {verdict}", "    ")
 
 
 @click.command()
@@ -124,6 +148,7 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
     result = synthesize_model(model, "explicit" if explicit else "symbolic")
+    cross_check = synthesize_model(model) if explicit and result.ok else None
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()
@@ -131,8 +156,15 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
     if as_json_output:
         import json
 
-        click.echo(json.dumps(as_json(result, warnings), indent=2))
+        data = as_json(result, warnings)
+        if cross_check is not None:
+            data["cross_check"] = {
+                "method": cross_check.method,
+                "reachable_states": cross_check.reachable_states,
+                "agree": cross_check.ok == result.ok and cross_check.reachable_states == result.reachable_states,
+            }
+        click.echo(json.dumps(data, indent=2))
     else:
-        print_result(result)
+        print_result(result, cross_check)
         print_warnings(warnings)
     raise exit_with(EXIT_OK if result.ok else EXIT_MODEL_ERRORS)

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import os
 import sys
+import textwrap
 from collections.abc import Sequence
+from typing import Any
 
 import click
 
@@ -20,23 +22,37 @@ class Cell(str):
 _MIN_WIDTH = 10  # a wrapped column keeps at least this many characters a line
 
 
-def terminal_width() -> int | None:
-    """The terminal's width (``COLUMNS`` when set), or None when standard output is not a
-    terminal (no wrapping)."""
-    if not sys.stdout.isatty():
-        return None
+def terminal_width(stream: Any = None) -> int | None:
+    """The width to fit output to: ``COLUMNS`` when set (even when the output is piped: the
+    user asked for it), else the terminal's width, or None when ``stream`` (standard output by
+    default) is not a terminal: then lines are left as they are, one line per item, for
+    programs that read them."""
     columns = os.environ.get("COLUMNS", "")
     if columns.isdigit() and int(columns) > 0:
-        return int(columns)
+        return max(int(columns), 2 * _MIN_WIDTH)
+    stream = sys.stdout if stream is None else stream
+    isatty = getattr(stream, "isatty", None)
+    if isatty is None or not isatty():
+        return None
     try:
-        return os.get_terminal_size(sys.stdout.fileno()).columns
+        return os.get_terminal_size(stream.fileno()).columns
     except (OSError, ValueError):
         return 80
 
 
-def _wrap(text: str, width: int) -> list[str]:
-    import textwrap
+def fill(text: str, width: int | None, indent: str = "    ") -> str:
+    """Each line of ``text`` wrapped to ``width`` (None: as it is); the lines a wrap adds keep
+    the line's own leading spaces plus ``indent``."""
+    if width is None or all(len(line) <= width for line in text.split("\n")):
+        return text
+    out = []
+    for line in text.split("\n"):
+        lead = line[: len(line) - len(line.lstrip(" "))]
+        out += textwrap.wrap(line, width, subsequent_indent=lead + indent, break_on_hyphens=False) or [line]
+    return "\n".join(out)
 
+
+def _wrap(text: str, width: int) -> list[str]:
     return textwrap.wrap(text, width, break_on_hyphens=False) or [""]
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import textwrap
 from collections.abc import Iterable, Mapping
 from enum import Enum
 
@@ -76,28 +77,42 @@ SHOWN = 120  # at most this much of a long source line is shown under a diagnost
 _CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
 
 
-def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile]) -> str:
-    """``path:line:col: error: message``, then the source line and a caret under the span."""
+def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile], columns: int | None = None) -> str:
+    """``path:line:col: error: message``, then the source line and a caret under the span,
+    then the hint; with ``columns``, the message and hint wrap to it and the source line is
+    shown through a window that fits."""
     span = diagnostic.span
-    lines = [f"{span}: {diagnostic.severity.value}: {diagnostic.message}"]
+    lines = _wrapped(f"{span}: {diagnostic.severity.value}: {diagnostic.message}", columns, "    ")
     source = sources.get(span.path)
+    shown_at_most = SHOWN if columns is None else max(20, min(SHOWN, columns - 10))
     if source is not None and span.line > 0:
         text = _CONTROL.sub("?", source.line_text(span.line).expandtabs(1))  # shown, never sent to the terminal
         if text.strip():
             width = (span.end_column - span.column) if span.end_line == span.line else 1
             width = max(1, min(width, len(text) - span.column + 1))
             column = span.column
-            if len(text) > SHOWN:  # a window of the line around the span
-                start = max(0, min(column - 1 - SHOWN // 3, len(text) - SHOWN))
-                shown = text[start : start + SHOWN]
-                text = ("..." if start else "") + shown + ("..." if start + SHOWN < len(text) else "")
+            if len(text) > shown_at_most:  # a window of the line around the span
+                start = max(0, min(column - 1 - shown_at_most // 3, len(text) - shown_at_most))
+                shown = text[start : start + shown_at_most]
+                text = ("..." if start else "") + shown + ("..." if start + shown_at_most < len(text) else "")
                 column = column - start + (3 if start else 0)
-                width = max(1, min(width, SHOWN - (column - 1)))
+                width = max(1, min(width, shown_at_most - (column - 1)))
             lines.append(f"    {text}")
             lines.append("    " + " " * (column - 1) + "^" + "~" * (width - 1))
     if diagnostic.hint:
-        lines.append(f"    hint: {diagnostic.hint}")
+        lines += _wrapped(f"    hint: {diagnostic.hint}", columns, "          ")
     return "\n".join(lines)
+
+
+def _wrapped(text: str, columns: int | None, indent: str) -> list[str]:
+    """One line per line of ``text``, each wrapped to ``columns`` (None: not wrapped); the lines
+    a wrap adds start with ``indent``."""
+    if columns is None:
+        return [text]
+    out = []
+    for line in text.split("\n"):
+        out += textwrap.wrap(line, columns, subsequent_indent=indent, break_on_hyphens=False) or [line]
+    return out
 
 
 def to_json(diagnostics: Iterable[Diagnostic]) -> str:

@@ -9,6 +9,11 @@
 * requirements as state-event exclusions on trigger events, plus the cancel
   requirement of actions.
 
+An action has a cancel event only when some component says when to cancel it
+(``on cancel to A``); otherwise the model never cancels it, as in the original
+tool's CIF, whose action plant has no cancel edge: no event that no automaton
+could take part in meaningfully, and no condition the user did not write.
+
 Variables that no guard, requirement or provide condition mentions are left
 out; an update that depends on received data (or on a variable left out) may
 give the variable any value of its domain.
@@ -44,6 +49,9 @@ class _Builder:
     def __post_init__(self) -> None:
         self.variables = tuple(v for v in m.synthesis_variables(self.model))
         self.kept = set(self.variables)
+        self.cancelled = {  # the actions some component says when to cancel (on cancel to A)
+            t.communication for _, t in m.result_transitions(self.model) if t.result is R.CANCEL
+        }
 
     def event(self, name: str, controllable: bool, kind: EventKind, **origin: object) -> Event:
         event = Event(name, controllable, kind, **origin)  # type: ignore[arg-type]
@@ -82,9 +90,12 @@ class _Builder:
         self.result_events.update({(c, R.REQUEST): trigger, (c, R.RESPONSE): response, (c, R.ERROR): error})
         if is_action:
             feedback = self.event(f"{c.name}.u_feedback", False, K.FEEDBACK, communication=c)
-            cancel = self.event(f"{c.name}.c_cancel", True, K.CANCEL, communication=c)
-            edges += [Edge(busy, busy, feedback), Edge(busy, idle, cancel)]
-            self.result_events.update({(c, R.FEEDBACK): feedback, (c, R.CANCEL): cancel})
+            edges.append(Edge(busy, busy, feedback))
+            self.result_events[(c, R.FEEDBACK)] = feedback
+            if c in self.cancelled:  # an action no component cancels is never cancelled
+                cancel = self.event(f"{c.name}.c_cancel", True, K.CANCEL, communication=c)
+                edges.append(Edge(busy, idle, cancel))
+                self.result_events[(c, R.CANCEL)] = cancel
         kind = AutomatonKind.ACTION if is_action else AutomatonKind.SERVICE
         alphabet = frozenset(e.event for e in edges)
         self.automata.append(Automaton(c.name, kind, (idle, busy, ready, failed), idle, tuple(edges), alphabet))
@@ -174,7 +185,7 @@ class _Builder:
             if not isinstance(c, m.Action):
                 continue
             conditions = [r.condition for r in self.requirements if r.event is self.trigger[c]]
-            if conditions:
+            if conditions and c in self.cancelled:
                 cancel = self.result_events[(c, R.CANCEL)]
                 allowed = negate(all_of(conditions))
                 text = f"{c.name} is cancelled only when one of its requirements no longer holds"
