@@ -115,11 +115,18 @@ def test_synthesize_explains_added_conditions_and_warns(tmp_path: Path):
     assert "grab.c_trigger (never allowed):" in result.stdout
     assert "1. grab.u_error  ->  grab.error, Grabber.grabbing" in result.stdout
     assert f"{model}:5:9: warning: synthesis never allows 'grab.c_trigger'" in result.stderr
-    assert "    hint: run 'robosc synthesize'" in result.stderr
+    assert "    hint: fix: add 'on error from grab' to state grabbing of Grabber" in result.stderr
+    assert "      fix: add 'on error from grab' to state grabbing of Grabber" in result.stdout
     data = json.loads(run("synthesize", "--json", str(model)).stdout)
     grab = next(e for e in data["events"] if e["event"] == "grab.c_trigger")
     assert grab["added"] == "false" and grab["why"]["never"] is True
     assert [s["event"] for s in grab["why"]["consequence"]["path"]] == ["grab.u_error"]
+    [fix] = grab["why"]["consequence"]["fixes"]
+    assert fix["text"].startswith("add 'on error from grab'") and (fix["path"], fix["line"], fix["column"]) == (
+        str(model),
+        12,
+        13,
+    )
     assert {w["code"] for w in data["warnings"]} == {"never-allowed", "never-holds", "unreached-state"}
     assert all(w["severity"] == "warning" and w["line"] > 0 for w in data["warnings"])
 

@@ -391,3 +391,81 @@ def test_an_action_no_component_cancels_is_never_cancelled_and_draws_no_warning(
     result = synthesize_model(model)
     cancel = result.guard("dock.c_cancel")
     assert cancel.required is not None and render(cancel.required) == "!Base.needs_charge"
+
+
+def test_the_explanation_names_the_fix_where_it_goes() -> None:
+    """The grabber of the original's tutorial has no 'on error from grab': grab is never
+    allowed, and the explanation, the warning and the editor's hover name the transition to
+    add and the state it goes in (before: "change the model so that this cannot happen")."""
+    from robosc.editor.hover import guard_notes
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    result = synthesize_model(load(GRAB))
+    why = result.why("grab.c_trigger")
+    assert why is not None
+    [fix] = why.consequence.fixes
+    assert fix.text.startswith("add 'on error from grab' to state grabbing of Grabber: grab can end with an error")
+    assert fix.span is not None and (fix.span.line, fix.span.column) == (12, 13)  # state grabbing
+    [never] = [w for w in synthesis_warnings(result) if w.code.value == "never-allowed"]
+    assert never.hint is not None and never.hint.startswith("fix: add 'on error from grab' to state grabbing")
+    assert never.hint.endswith(":12:13)")
+    assert "fix: add 'on error from grab'" in "\n".join(guard_notes(result)["grab"])
+    # with the transition added, grab is allowed and nothing is left to fix
+    fixed = GRAB.replace("state grabbing { on response from grab goto idle }",
+                         "state grabbing { on response from grab goto idle on error from grab goto idle }")
+    assert synthesize_model(load(fixed)).guard("grab.c_trigger").added is None
+
+
+def test_a_requirement_that_shuts_the_only_way_out_is_named() -> None:
+    door = """
+robot Doors {
+    component Door {
+        incoming message open with type: none
+        incoming message close with type: none
+        behaviour {
+            initial marked state closed { on request to open goto opened }
+            state opened { on request to close goto closed }
+        }
+    }
+    requirement close needs Door.closed
+}
+"""
+    why = synthesize_model(load(door)).why("open")
+    assert why is not None and why.never
+    [fix] = why.consequence.fixes
+    assert fix.text == (
+        "requirement close needs Door.closed shuts Door's only way out of opened here: allow close in this "
+        "state, or keep the robot out of it"
+    )
+    assert fix.span is not None and fix.span.line == 11
+
+
+def test_only_components_that_are_really_stuck_are_blamed() -> None:
+    """A component waiting for an uncontrollable event that can happen is not stuck (before:
+    "Detector stays in seeing (waits for lost)")."""
+    detector = """
+    component Detector {
+        outgoing message seen with type: none
+        outgoing message lost with type: none
+        behaviour {
+            initial marked state searching { on response from seen goto seeing }
+            state seeing { on response from lost goto searching }
+        }
+    }
+    requirement wave"""
+    why = synthesize_model(load(GRAB.replace("\n    requirement wave", detector, 1))).why("grab.c_trigger")
+    assert why is not None
+    assert "Grabber stays in grabbing" in why.consequence.reason
+    assert "Detector stays" not in why.consequence.reason
+
+
+def test_a_missing_error_transition_is_named_before_the_requirements_it_leaves_shut(tmp_path) -> None:
+    """The shelf picker without 'on error from unload' (as it was once written): the fix is
+    the missing transition in Tray.emptying, not the requirements that then keep Base put."""
+    text = (EXAMPLES / "shelf_picker.rscd").read_text()
+    broken = "\n".join(line for line in text.splitlines() if "on error from unload" not in line)
+    why = synthesize_model(load(broken)).why("pick.c_trigger")
+    assert why is not None
+    assert [f.text.split(":")[0] for f in why.consequence.fixes] == [
+        "add 'on error from unload' to state emptying of Tray"
+    ]

@@ -22,6 +22,13 @@ def _explanation(explanation: Explanation) -> dict[str, Any]:
         "reason": explanation.reason,
         "initial_state": explanation.initial_state,
         "path": [{"event": s.event.name, "state": s.state} for s in explanation.path],
+        "fixes": [
+            {
+                "text": f.text,
+                **({"path": f.span.path, "line": f.span.line, "column": f.span.column} if f.span is not None else {}),
+            }
+            for f in explanation.fixes
+        ],
     }
 
 
@@ -97,6 +104,8 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         else:
             click.echo("  (the problem is already in the initial state)")
         say(f"  why: {explanation.reason}")
+        for fix in explanation.fixes:
+            say(f"  fix: {fix}")
         return
     if result.method == "explicit":
         _print_cross_check(result, cross_check, say)

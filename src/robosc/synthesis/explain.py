@@ -8,10 +8,12 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 from typing import Any
 
+from robosc.language import model as m
 from robosc.language.render import render
-from robosc.plant.network import AutomatonKind, Event
+from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Requirement
+from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.result import Explanation, Step
+from robosc.synthesis.result import Explanation, Fix, Step
 from robosc.synthesis.state import NetworkState, describe
 
 
@@ -89,11 +91,37 @@ def explain_from(fp: Any, start: BDD, failed: bool = False) -> Explanation:
     last = pick(fp, target)
     path = walk_back(fp, layers, last, [(e, fp.relation[e]) for e in uncontrollable])
     steps = tuple(Step(event, describe(network, reached)) for event, reached in path)
-    return Explanation(_reason(fp, last, failed), describe(network, pick(fp, start)), steps)
+    reason = _reason(fp, last, failed)
+    found = fixes(fp, last) if reason.startswith("the system would block") else []
+    trapped = fp.memo.get(("trapped", last))
+    if trapped is not None:
+        found += fixes(fp, trapped)
+    return Explanation(reason, describe(network, pick(fp, start)), steps, _likeliest(found))
 
 
-def _exits(fp: Any, state: NetworkState) -> list[str]:
-    """For each component stuck outside a marked state: how it could leave, and what stops it."""
+def _likeliest(found: list[Fix]) -> tuple[Fix, ...]:
+    """The fixes once each, a missing transition first: where one is missing, a requirement
+    that shuts a way out is its consequence, not the cause, and is left out."""
+    unique = list(dict.fromkeys(found))
+    missing = [f for f in unique if f.text.startswith("add 'on ")]
+    marked = [f for f in unique if " has no way out and is not marked" in f.text]
+    others = [f for f in unique if f not in missing and f not in marked]
+    return tuple(missing + marked + ([] if missing else others))
+
+
+@record
+class _Exit:
+    """One way out of a component's location, and what stops it in a state."""
+
+    event: Event
+    status: str  # "can happen", "cannot happen", "forbidden", "disabled", "blocks on"
+    requirement: Requirement | None = None
+
+
+def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[_Exit]]]:
+    """The components stuck outside a marked state in ``state``, each with its ways out and
+    what stops each. One that waits for an uncontrollable event that can happen here is not
+    stuck (it leaves when the event comes), so it is not named."""
     enc = fp.enc
     network = enc.network
     where = fp.state(state)
@@ -101,24 +129,98 @@ def _exits(fp: Any, state: NetworkState) -> list[str]:
     for automaton, location in zip(network.automata, state.locations, strict=True):
         if location.marked or automaton.kind is not AutomatonKind.COMPONENT:
             continue
-        reasons = []
+        exits = []
         for edge in automaton.edges:
             if edge.source is not location or edge.target is location:
                 continue
             event = edge.event
+            possible = (where & fp.enabled[event]) != enc.false
             if not event.controllable:
-                never = (where & fp.enabled[event]) == enc.false
-                reasons.append(f"waits for {event.name}{', which cannot happen here' if never else ''}")
+                exits.append(_Exit(event, "can happen" if possible else "cannot happen"))
                 continue
             broken = [r for r in network.requirements_on(event) if (where & enc.boolean(r.condition)) == enc.false]
             if broken:
-                reasons.append(f"{event.name} is forbidden here by {broken[0].description}")
-            elif (where & fp.enabled[event]) == enc.false:
-                reasons.append(f"{event.name} cannot happen here")
+                exits.append(_Exit(event, "forbidden", broken[0]))
             else:
-                reasons.append(f"{event.name} leads on to states that block as well")
-        exits = "; ".join(reasons) if reasons else "it has no way out"
-        found.append(f"{automaton.name} stays in {location.name} ({exits})")
+                exits.append(_Exit(event, "blocks on" if possible else "disabled"))
+        if any(e.status == "can happen" for e in exits):
+            continue
+        found.append((automaton, location, exits))
+    return found
+
+
+def _exits(fp: Any, state: NetworkState) -> list[str]:
+    """For each component stuck outside a marked state: how it could leave, and what stops it."""
+    found = []
+    for automaton, location, exits in _stuck(fp, state):
+        reasons = []
+        for e in exits:
+            if e.status == "cannot happen":
+                reasons.append(f"waits for {e.event.name}, which cannot happen here")
+            elif e.status == "forbidden":
+                assert e.requirement is not None
+                reasons.append(f"{e.event.name} is forbidden here by {e.requirement.description}")
+            elif e.status == "disabled":
+                reasons.append(f"{e.event.name} cannot happen here")
+            else:
+                reasons.append(f"{e.event.name} leads on to states that block as well")
+        found.append(f"{automaton.name} stays in {location.name} ({'; '.join(reasons) or 'it has no way out'})")
+    return found
+
+
+_RESULT_WORDS = {EventKind.RESPONSE: "response", EventKind.ERROR: "error"}
+
+
+def fixes(fp: Any, state: NetworkState) -> list[Fix]:
+    """Small changes to the model that would let the components stuck in ``state`` go on:
+    a transition for an uncontrollable result the component never handles (a service or
+    action failing while the component waits for its response), a requirement that shuts the
+    only way out, a state that has no way out and is not marked."""
+    network = fp.enc.network
+    plants = {a.name: (a, loc) for a, loc in zip(network.automata, state.locations, strict=True)}
+    found: list[Fix] = []
+    for automaton, location, exits in _stuck(fp, state):
+        if not exits:
+            found.append(
+                Fix(
+                    f"state {location.name} of {automaton.name} has no way out and is not marked: mark it "
+                    f"('marked state {location.name}') or add a transition out of it",
+                    location.span,
+                )
+            )
+            continue
+        for e in exits:
+            communication = e.event.communication
+            if e.status != "cannot happen" or communication is None or communication.name not in plants:
+                continue
+            plant, at = plants[communication.name]
+            came = [
+                edge.event
+                for edge in plant.edges
+                if edge.target is at and edge.event.kind in _RESULT_WORDS and edge.event not in automaton.alphabet
+            ]
+            for event in came:
+                word = _RESULT_WORDS[event.kind]
+                found.append(
+                    Fix(
+                        f"add 'on {word} from {communication.name}' to state {location.name} of {automaton.name}: "
+                        f"{communication.name} can end with {'an error' if word == 'error' else 'a response'} while "
+                        f"{automaton.name} waits in {location.name}, and {automaton.name} does not say what happens then",
+                        location.span,
+                    )
+                )
+        forbidden = [e for e in exits if e.status == "forbidden"]
+        if forbidden and len(forbidden) == len(exits):
+            for e in forbidden:
+                assert e.requirement is not None
+                origin = e.requirement.origin
+                found.append(
+                    Fix(
+                        f"{e.requirement.description} shuts {automaton.name}'s only way out of {location.name} here: "
+                        f"allow {e.event.name} in this state, or keep the robot out of it",
+                        origin.span if origin is not None else None,
+                    )
+                )
     return found
 
 
@@ -156,6 +258,7 @@ def _trap(fp: Any, state: NetworkState) -> str | None:
             cut = f"The shortest way on to a marked state is cut: {route}the uncontrollable event {u.name} can "
             if (into & dead) != enc.false:
                 trapped = pick(fp, into & dead)
+                fp.memo[("trapped", state)] = trapped  # its fixes are the explanation's too
                 stays = "; ".join(_exits(fp, trapped))
                 return (
                     f"{cut}happen and lead to [{describe(network, trapped)}], from where no marked state can be "

@@ -6,6 +6,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from robosc.language import model as m
+from robosc.language.source import Span
 from robosc.plant.network import Event, Network
 from robosc.record import field, record
 from robosc.synthesis.state import NetworkState
@@ -33,13 +34,27 @@ class Step:
 
 
 @record
+class Fix:
+    """A small change to the model that removes the problem an explanation describes, in the
+    model's own words, and where it goes (None: nowhere in particular)."""
+
+    text: str
+    span: Span | None = None
+
+    def __str__(self) -> str:
+        return f"{self.text} ({self.span})" if self.span is not None and self.span.line > 0 else self.text
+
+
+@record
 class Explanation:
     """Why synthesis failed: the reason, and a shortest sequence of uncontrollable
-    events from the initial state to a state that must be avoided."""
+    events from the initial state to a state that must be avoided; ``fixes``: changes to
+    the model that would remove the problem, where robosc can name them."""
 
     reason: str
     initial_state: str
     path: tuple[Step, ...]
+    fixes: tuple[Fix, ...] = ()
 
 
 @record

@@ -38,6 +38,7 @@ def why_lines(restriction: Restriction) -> list[str]:
         lines.append("    from there, events the supervisor cannot prevent:")
         lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.consequence.path, 1)]
     lines.append(f"    so: {restriction.consequence.reason}")
+    lines += [f"    fix: {fix}" for fix in restriction.consequence.fixes]
     return lines
 
 
@@ -66,7 +67,8 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
                 f"synthesis never allows '{guard.event.name}' (it adds the condition false): in "
                 f"[{restriction.state}] {consequence(restriction)}",
                 Code.NEVER_ALLOWED,
-                "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
+                "; ".join(f"fix: {fix}" for fix in restriction.consequence.fixes)
+                or "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
             )
         )
     seen: set[int] = set()
