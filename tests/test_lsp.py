@@ -113,13 +113,13 @@ async def test_quick_fixes_escape_a_keyword_and_add_a_range(client: LanguageClie
     text = (
         "robot R {\n"
         "    component C {\n"
-        "        outgoing message beep with type: none\n"
+        "        outgoing message beep with type: none incoming message act with type: none\n"
         "        behaviour {\n"
         "            variable n: integer = 12\n"
         "            initial marked state state { on response from beep do n := n + 1 goto ^state }\n"
         "        }\n"
         "    }\n"
-        "    requirement beep needs C.n < 3\n"
+        "    requirement act needs C.n < 3\n"
         "}\n"
     )
     path = tmp_path / "r.rscd"
@@ -466,8 +466,8 @@ async def test_renamed_communication_keeps_its_ros_name(client: LanguageClient, 
     text = (
         "robot R {\n"
         "    component C {\n"
-        "        outgoing message beep with type: none\n"
-        "        behaviour { initial marked state s { on response from beep goto s } }\n"
+        "        incoming message beep with type: none\n"
+        "        behaviour { initial marked state s { on request to beep goto s } }\n"
         "    }\n"
         "    requirement beep needs C.s\n"
         "}\n"
@@ -477,8 +477,8 @@ async def test_renamed_communication_keeps_its_ros_name(client: LanguageClient, 
     uri = open_document(client, path, text)
     assert await diagnostics_of(client, uri) == []
     after = apply_edit(text, await rename(client, uri, where(path, "beep with", 0, 1), "chirp"), uri)
-    assert 'outgoing message chirp with identifier: "beep", type: none' in after
-    assert "from chirp goto" in after and "requirement chirp needs" in after
+    assert 'incoming message chirp with identifier: "beep", type: none' in after
+    assert "to chirp goto" in after and "requirement chirp needs" in after
     result = check_text(after, str(path))
     assert result.ok and result.model is not None
     assert result.model.components[0].communications[0].ros_name == "beep"

@@ -157,3 +157,35 @@ def test_checking_a_library_file_on_its_own():
 
 def test_check_text_never_needs_a_file():
     assert check_text(robot()).ok
+
+
+def test_other_languages_spellings_of_the_basic_types_get_the_robosc_word(check):
+    for written, word in (("bool", "boolean"), ("int", "integer"), ("float", "double"), ("str", "string"),
+                          ("Float32", "double"), ("String", "string"), ("void", "none")):
+        result = check(robot().replace("outgoing message sense with type: boolean",
+                                       f"outgoing message sense with type: {written}"))
+        [d] = result.diagnostics
+        assert d.message == f"unknown data type '{written}'" and d.hint == f"RoboSC writes '{word}'"
+    # a data type of the model with such a name is the model's own
+    own = check(robot("datatype object Float32 { data: double }").replace("type: boolean", "type: Float32"))
+    assert "unknown data type" not in messages(own)
+
+
+def test_a_did_you_mean_proposes_only_what_may_be_assigned(check):
+    """Assigning another component's variable (before: "did you mean 'Battery.charges'?",
+    which the next check refuses): the hint says why it cannot be, and what to do."""
+    text = robot(
+        "component Battery { behaviour { variable charges: integer(0..3) = 0 initial marked state ok {} } }",
+        "component Dock { outgoing message docked with type: none behaviour { "
+        "initial marked state idle { on response from docked do charges := 1 } } }",
+    )
+    [d] = check(text).diagnostics
+    assert d.message == "unknown variable 'charges' in component 'Dock'"
+    assert d.hint is not None and d.hint.startswith(
+        "'charges' is a variable of Battery, and a transition assigns only its own component's variables (rule 7)"
+    )
+    assert "Battery.charges" not in d.hint
+    close = text.replace("variable charges", "variable charge").replace("do charges", "do chargs")
+    close = close.replace("initial marked state idle", "variable charges: integer(0..3) = 0 initial marked state idle")
+    [d] = check(close).diagnostics
+    assert d.hint == "did you mean 'charges'?"  # Dock's own, not Battery's 'charge'

@@ -243,6 +243,7 @@ CASES = {
         (robot(component(OK_STATES, 'incoming message m with type: string'), 'provide m with "a\\0"'), "U+0000"),
         (robot(component(OK_STATES, 'incoming message m with type: string'), 'provide m with "\x1b[2J"'), "U+001B"),
     ],
+    "uncontrollable-requirement": [(robot("requirement sense needs S.idle"), "'sense' is a message the robot sends")],
     "enum-default": [
         (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
         (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
@@ -301,6 +302,7 @@ VALID = {
     "rule-15": robot(component(OK_STATES, 'outgoing message m with identifier: "~/private/a_b1", type: none')),
     "package-name": robot().replace("robot R", "robot R_"),
     "text": robot(component(OK_STATES, "incoming message m with type: string"), 'provide m with "a\\tb\\n\\r\tc"'),
+    "uncontrollable-requirement": robot("requirement act needs S.idle"),
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
     "enum-values": robot("datatype enum E from double to { value > 1.0 or value < -1.0 -> big default -> small }"),
     "no-array": robot(

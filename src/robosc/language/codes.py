@@ -60,6 +60,10 @@ class Code(str, Enum):
     TEXT = "text", "a string holds no NUL or other control character but tab, newline and carriage return"
     # warnings that catch modelling mistakes
     IMPLICIT_START = "implicit-start", "warning: a guard or requirement reads an enum variable with no initial value"
+    UNCONTROLLABLE_REQUIREMENT = (
+        "uncontrollable-requirement",
+        "warning: a requirement on a message the robot sends, which the supervisor cannot forbid",
+    )
     NEVER_ALLOWED = "never-allowed", "warning: synthesis disables a controllable event everywhere"
     NEVER_HOLDS = "never-holds", "warning: a requirement's condition holds in no reachable state"
     UNREACHED_STATE = "unreached-state", "warning: no controlled run reaches a state"

@@ -31,6 +31,7 @@ from robosc.language.checks import (
     shared_topics,
     synthesis_types,
     topic_names,
+    uncontrollable_requirements,
     unique_names,
     variable_ranges,
 )
@@ -61,6 +62,7 @@ CHECKS: tuple[Check, ...] = (
     object_variables.check,  # no variable of object type
     variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
     implicit_start.check,  # warning: an enum variable read with no initial value
+    uncontrollable_requirements.check,  # warning: a requirement on what the robot sends
     limits.check,  # sizes synthesis cannot represent
     package_name.check,  # a robot's name names a ROS package: a letter first
 )

@@ -196,7 +196,9 @@ class BehaviourResolver:
         return found
 
     def _assignment(self, syntax: s.AssignmentSyntax, context: ExprContext) -> m.Assignment:
-        target = self.expressions.access(syntax.target, ExprContext(self.tables, None, "an assignment target"))
+        target = self.expressions.access(
+            syntax.target, ExprContext(self.tables, None, "an assignment target", assigning=True)
+        )
         value = self.expressions.expr(syntax.value, context)
         if not isinstance(target, m.VariableRef):
             if not isinstance(target, m.Invalid):

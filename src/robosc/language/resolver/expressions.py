@@ -25,6 +25,7 @@ class ExprContext:
     value_type: m.DataType | None  # the type of ``value``; None where ``value`` means nothing
     where: str  # for messages: "a requirement", "an enum rule", ...
     no_value_reason: str = ""
+    assigning: bool = False  # the target of an assignment: only the component's own variables
 
 
 class ExpressionResolver:
@@ -96,6 +97,16 @@ class ExpressionResolver:
                 return m.Invalid(syntax.span)
             self.reporter.refer(syntax.head.span, value)
             return m.EnumLiteral(enum, value, syntax.span)
+        if context.assigning and own is not None:  # only what may be assigned here is proposed
+            self.reporter.unknown(
+                syntax.head.span,
+                "variable",
+                name,
+                own.variables,
+                f" in component '{own.name}'",
+                otherwise=lambda: self._assigned_elsewhere(name, own.name),
+            )
+            return m.Invalid(syntax.span)
         candidates = list(self.component_names()) + list(self.enum_values)
         if own is not None:
             candidates += list(own.variables)
@@ -103,6 +114,19 @@ class ExpressionResolver:
             syntax.head.span, "name", name, candidates, otherwise=lambda: self._member_elsewhere(name)
         )
         return m.Invalid(syntax.span)
+
+    def _assigned_elsewhere(self, name: str, own: str) -> str | None:
+        """Why a variable of another component cannot be assigned here, and what to do instead."""
+        for component_name in self.component_names():
+            tables = self.components(component_name)
+            if component_name == own or tables is None or isinstance(tables, str) or name not in tables.variables:
+                continue
+            return (
+                f"'{name}' is a variable of {component_name}, and a transition assigns only its own component's "
+                f"variables (rule 7): assign it in a transition of {component_name} (which can react to the same "
+                f"event), or give {own} a variable of its own"
+            )
+        return None
 
     def _member_elsewhere(self, name: str, skip: str | None = None) -> str | None:
         """A hint naming ``Component.member`` for the closest state or variable of any component."""

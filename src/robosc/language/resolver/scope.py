@@ -21,6 +21,19 @@ if TYPE_CHECKING:
 NamedTypeSyntax = s.ObjectTypeSyntax | s.EnumTypeSyntax
 
 
+# other languages' and ROS's names for RoboSC's basic types (a basic type is sent as the
+# std_msgs message of the same kind: boolean as Bool, integer as Int32, double as Float32)
+_FOREIGN = {
+    "boolean": ("bool", "Bool"),
+    "integer": ("int", "Int", "long", "short", "int8", "int16", "int32", "int64", "uint8", "uint16", "uint32",
+                "uint64", "Integer"),
+    "double": ("float", "Float", "float32", "float64", "real", "number", "Double"),
+    "string": ("str", "String", "text", "char", "std::string"),
+    "none": ("void", "None", "null", "nil", "Empty", "unit", "nothing"),
+}
+FOREIGN_TYPES = {alias.lower(): word for word, aliases in _FOREIGN.items() for alias in aliases}
+
+
 class FileScope:
     """The definitions of one file (robot or library), resolved against that file only."""
 
@@ -74,6 +87,12 @@ class FileScope:
             return m.ArrayType(self.data_type(syntax.element))
         named = self.type_syntax.get(syntax.name.text)
         if named is None:
+            word = FOREIGN_TYPES.get(syntax.name.text.lower())
+            if word is not None and syntax.name.text not in self.type_syntax:
+                self.reporter.error(
+                    syntax.name.span, f"unknown data type '{syntax.name.text}'", Code.UNKNOWN_NAME, f"RoboSC writes '{word}'"
+                )
+                return m.ERROR
             self.reporter.unknown(syntax.name.span, "data type", syntax.name.text, self.type_syntax)
             return m.ERROR
         built = self._named_type(named)
