@@ -229,3 +229,27 @@ def test_interactive_failed_expect_is_reported_and_the_session_goes_on() -> None
     assert result.returncode == 0, result.stderr
     assert "failed: step 0: expect Platform turning: Platform is ready" in result.stdout
     assert "     1  movement\n     2  movement" in result.stdout  # the session went on
+
+
+def test_a_communications_name_stands_for_its_one_event_that_can_happen_now() -> None:
+    """Before: 'pick' answered "did you mean 'tick'?" although pick.c_trigger was allowed."""
+    sim = sim_of("shelf_picker")
+    assert sim.run("navigate").events == ("navigate.c_trigger",)
+    with pytest.raises(CommandError, match="'navigate' could be navigate.u_response or navigate.u_error or "
+                                           "navigate.u_feedback now: say which"):
+        sim.run("navigate")
+    assert sim.run("navigate.u_response").events == ("navigate.u_response",)
+    assert sim.run("pick").events == ("pick.c_trigger",)
+    with pytest.raises(CommandError, match="none of dock's events can happen now"):
+        sim.run("dock")
+    with pytest.raises(CommandError, match="unknown command or event 'pic'"):
+        sim.run("pic")
+
+
+def test_steps_are_numbered_without_gaps_when_a_tick_does_nothing() -> None:
+    sim = sim_of("shelf_picker")
+    first = sim.run("tick")  # navigate.c_trigger
+    assert first.steps == (1,)
+    assert sim.run("tick").events == ()  # nothing allowed: waiting for the robot
+    assert sim.run("navigate.c_reset").events == ()  # refused
+    assert sim.run("navigate.u_response").steps == (2,)  # before: 4

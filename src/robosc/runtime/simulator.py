@@ -181,7 +181,13 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         self.supervisor.tick()
-        return self._since(before)
+        return self._counted(self._since(before))
+
+    def _counted(self, outcome: Outcome) -> Outcome:
+        """A step is a command that performed an event: one that did nothing takes no number."""
+        if not outcome.events:
+            self.step -= 1
+        return outcome
 
     def allowed(self) -> list[str]:
         return list(self.supervisor.allowed())
@@ -194,7 +200,7 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         if not self.supervisor.perform(name):
-            return self._checked(Outcome((), (f"refused: {self.refusal(name)}",)))
+            return self._counted(self._checked(Outcome((), (f"refused: {self.refusal(name)}",))))
         return self._since(before)
 
     def refusal(self, name: str) -> str:
@@ -234,7 +240,9 @@ class Simulator:
         self.step += 1
         before = len(self.events)
         if not self.supervisor.deliver(name, value, raw):
-            return self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
+            return self._counted(
+                self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
+            )
         return self._since(before)
 
     def run(self, line: str) -> Outcome:
@@ -274,7 +282,28 @@ class Simulator:
         if word in self.supervisor.UNCONTROLLABLE:
             value, raw = self.parse_data(word, rest)
             return self.deliver(word, value, raw)
+        full = self.full_name(word)
+        if full is not None:
+            return self.run(f"{full} {rest}")
         raise CommandError(f"unknown command or event '{word}'" + _suggest(word, [*COMMANDS, *self.event_names()]))
+
+    def full_name(self, word: str) -> str | None:
+        """The event a communication's name stands for: ``pick`` is ``pick.c_trigger`` when that
+        is the only one of pick's events that can happen now. None when ``word`` names no
+        communication; CommandError when several or none of its events can happen now."""
+        named = [e for e in self.event_names() if e.split(".", 1)[0] == word and "." in e]
+        if not named:
+            return None
+        now = set(self.allowed()) | set(self.expected())
+        possible = [e for e in named if e in now]
+        if len(possible) == 1:
+            return possible[0]
+        if possible:
+            raise CommandError(f"'{word}' could be {' or '.join(possible)} now: say which")
+        raise CommandError(
+            f"none of {word}'s events can happen now ({', '.join(named)}); allowed: "
+            f"{', '.join(self.allowed()) or '(none)'}; robot events possible: {', '.join(self.expected()) or '(none)'}"
+        )
 
     def event_names(self) -> list[str]:
         return [*self.supervisor.CONTROLLABLE, *self.supervisor.UNCONTROLLABLE]
