@@ -235,9 +235,11 @@ def test_a_communications_name_stands_for_its_one_event_that_can_happen_now() ->
     """Before: 'pick' answered "did you mean 'tick'?" although pick.c_trigger was allowed."""
     sim = sim_of("shelf_picker")
     assert sim.run("navigate").events == ("navigate.c_trigger",)
-    with pytest.raises(CommandError, match="'navigate' could be navigate.u_response or navigate.u_error or "
-                                           "navigate.u_feedback now: say which"):
+    with pytest.raises(CommandError) as ambiguous:
         sim.run("navigate")
+    assert str(ambiguous.value) == (
+        "'navigate' could be navigate.u_response or navigate.u_error or navigate.u_feedback now: say which"
+    )
     assert sim.run("navigate.u_response").events == ("navigate.u_response",)
     assert sim.run("pick").events == ("pick.c_trigger",)
     with pytest.raises(CommandError, match="none of dock's events can happen now"):
