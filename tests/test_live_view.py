@@ -126,6 +126,8 @@ def test_live_view_follows_a_scripted_run(browser: Any, tmp_path: Path) -> None:
             "return Array.from(document.querySelectorAll('#feed li')).map(li => li.textContent);"
         )
         assert feed[:3] == ["scan_front no_wall_front", "rotate_done", "turn_left 90"]  # enum data, converted
+        # the script is over; the page stays, and says the data will not change any more
+        assert wait_until(lambda: text(browser, "status") == "ended: the simulation is over", 10)
     finally:
         children.stop([process])
 

@@ -123,6 +123,7 @@ def simulate(
         else:
             code = _interactive(sim)
         if live is not None and code == EXIT_OK and (script is not None or steps is not None):
+            live.end("the simulation is over")
             say(f"still serving the live view on {live.url}; Ctrl-C to stop")
             _show_state(sim)
             _wait_forever()

@@ -116,7 +116,7 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
     nothing = f"no live view page came from {namespace} in {timeout:g} s"
     page = str(listener.expect("page", timeout, nothing, keep).get("html", ""))
     try:
-        view = LiveView(page, port=port)
+        view = LiveView(page, port=port, watched=True)  # the page says when the robot goes silent
     except OSError as exc:
         raise RemoteError(f"cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
 
@@ -127,9 +127,13 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
                 return
             record = message.get("record")
             if message.get("op") == "event" and isinstance(record, dict):
-                view.publish(record)
+                if record.get("heartbeat") is True:  # the node is there, though nothing happened
+                    view.alive()
+                else:
+                    view.publish(record)
 
     for record in early:
-        view.publish(record)
+        if record.get("heartbeat") is not True:
+            view.publish(record)
     threading.Thread(target=forward, name="robosc-view", daemon=True).start()
     return view

@@ -77,6 +77,27 @@ def on_event(out: Out) -> Callable[[Any], None]:
     return event
 
 
+SETTLE = 1.0  # seconds without a new controller before discovery counts as done
+
+
+def discover_robots(look: Callable[[], List[str]], seconds: float) -> List[str]:
+    """The controllers found by calling ``look`` (about ten times a second) for at least
+    ``seconds``, until what it finds has not changed for :data:`SETTLE` seconds (ROS 2 learns of
+    the graph's nodes one after another); with nothing found, up to three times as long."""
+    start = time.monotonic()
+    robots = []  # type: List[str]
+    changed = start
+    while True:
+        found = look()
+        now = time.monotonic()
+        if found != robots:
+            robots, changed = found, now
+        if now - start >= seconds and robots and now - changed >= SETTLE:
+            return robots
+        if now - start >= 3 * seconds + SETTLE:
+            return robots
+
+
 def serve(out: Out, robots: List[str], watch: Callable[[str], None]) -> None:
     """Say which robots there are, then watch the one asked for, until told to quit."""
     out.send("robots", robots=robots)
@@ -96,8 +117,12 @@ def ros1(discover: float) -> None:
 
     rospy.init_node("robosc_view", anonymous=True, disable_signals=True)
     out = Out()
-    time.sleep(min(discover, 1.0))
-    robots = namespaces([name for name, _ in rospy.get_published_topics()])
+
+    def look() -> List[str]:
+        time.sleep(0.1)
+        return namespaces([name for name, _ in rospy.get_published_topics()])
+
+    robots = discover_robots(look, min(discover, 1.0))
     keep = []
 
     def watch(namespace: str) -> None:
@@ -117,12 +142,12 @@ def ros2(discover: float) -> None:
     rclpy.init()
     node = rclpy.create_node("robosc_view")
     out = Out()
-    start = time.monotonic()
-    robots = []  # type: List[str]
-    # look for ``discover`` seconds; when nothing is found by then, up to three times as long
-    while time.monotonic() - start < discover or (not robots and time.monotonic() - start < 3 * discover):
+
+    def look() -> List[str]:
         rclpy.spin_once(node, timeout_sec=0.1)
-        robots = namespaces([name for name, _ in node.get_topic_names_and_types()])
+        return namespaces([name for name, _ in node.get_topic_names_and_types()])
+
+    robots = discover_robots(look, discover)
     latched = QoSProfile(depth=100, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     keep = []
 

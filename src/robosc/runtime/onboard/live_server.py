@@ -7,6 +7,11 @@ the page itself with nothing to install. Binds 127.0.0.1 unless told otherwise.
 
     view = LiveView(page_html, port=8765)   # serves in a thread of its own
     view.publish({"time": ..., "event": ..., "controllable": ..., "data": ..., "state": {...}})
+
+Every open page gets a pulse each half second saying how long ago the data last came
+(``watched``: a view of a robot elsewhere, whose heartbeat ``alive()`` records; otherwise the
+source is this process, alive while it serves) and whether the run ended (``end()``), so that
+the page never shows old data as live.
 """
 
 from __future__ import print_function
@@ -14,10 +19,11 @@ from __future__ import print_function
 import json
 import queue
 import threading
+import time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from typing import Any, Dict, List, Optional, Union
 
-KEEPALIVE_SECONDS = 10.0
+PULSE_SECONDS = 0.5  # how often an open page hears whether data still comes (and the connection is kept)
 QUEUE_SIZE = 2000  # events kept for a slow browser; older ones are dropped
 BACKLOG = 512  # connections waiting to be accepted: 200 pages opening at once are all taken at once
 LOCAL_HOSTS = ("127.0.0.1", "localhost", "[::1]")  # the Host header a page on this machine sends
@@ -42,8 +48,13 @@ class _Server(ThreadingHTTPServer):
 
 
 class LiveView(object):
-    def __init__(self, page: Union[str, bytes], port: int = 8765, host: str = "127.0.0.1") -> None:
+    def __init__(
+        self, page: Union[str, bytes], port: int = 8765, host: str = "127.0.0.1", watched: bool = False
+    ) -> None:
         self.page = page.encode("utf-8") if not isinstance(page, bytes) else page
+        self.watched = watched
+        self.heard = time.monotonic()  # when the data last came (or the robot said it is there)
+        self.ended = None  # type: Optional[str]
         self.clients: "List[queue.Queue[str]]" = []
         self.lock = threading.Lock()
         self.last: "Optional[Dict[str, Any]]" = None  # the latest record: a new browser starts from it
@@ -88,9 +99,23 @@ class LiveView(object):
     def url(self) -> str:
         return "http://%s:%d/" % (str(self.server.server_address[0]), self.port)
 
+    def alive(self) -> None:
+        """The source is there (a robot's heartbeat), though nothing happened."""
+        self.heard = time.monotonic()
+
+    def end(self, why: str) -> None:
+        """No more data will come (the run ended): the pages say so."""
+        self.ended = why
+
+    def pulse(self) -> str:
+        """What a page hears every half second: how old the data is, and whether it ended."""
+        age = time.monotonic() - self.heard if self.watched else 0.0
+        return json.dumps({"age": round(age, 1), "ended": self.ended})
+
     def publish(self, record: Dict[str, Any]) -> None:
         """Send an event record to every open page (never blocks the caller)."""
         text = json.dumps(record, sort_keys=True, default=str)
+        self.heard = time.monotonic()
         with self.lock:
             self.last = record
             clients = list(self.clients)
@@ -113,13 +138,16 @@ class LiveView(object):
             handler.wfile.write(b"retry: 1000\n\n")
             if last is not None:
                 handler.wfile.write(("event: state\ndata: %s\n\n" % json.dumps(last, default=str)).encode("utf-8"))
+            handler.wfile.write(("event: pulse\ndata: %s\n\n" % self.pulse()).encode("utf-8"))
             handler.wfile.flush()
+            due = time.monotonic() + PULSE_SECONDS
             while True:
                 try:
-                    text = q.get(timeout=KEEPALIVE_SECONDS)
+                    text = q.get(timeout=max(0.0, due - time.monotonic()))
                 except queue.Empty:
-                    handler.wfile.write(b": keepalive\n\n")
+                    handler.wfile.write(("event: pulse\ndata: %s\n\n" % self.pulse()).encode("utf-8"))
                     handler.wfile.flush()
+                    due = time.monotonic() + PULSE_SECONDS
                     continue
                 lines = [text]
                 while len(lines) < 200:  # send what piled up in one write

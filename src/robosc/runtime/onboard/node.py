@@ -35,6 +35,8 @@ HEALTH_TOPIC = "health"  # latched: whether the node holds, what it waits for, u
 # for ``robosc view`` on another machine: the live view's page (latched) and every event record
 VIEW_PAGE_TOPIC = "live_view/page"
 VIEW_EVENTS_TOPIC = "live_view/events"
+HEARTBEAT = '{"heartbeat": true}'  # on live_view/events every HEARTBEAT_SECONDS while watched
+HEARTBEAT_SECONDS = 0.5
 
 
 def default_name(robot_class: Any) -> str:
@@ -175,6 +177,7 @@ class NodeCore(object):
         self.mode = mode
         self.log = log
         self.cycles = 0  # timer cycles run so far
+        self.beat = 0.0  # when the last heartbeat went out on live_view/events
         self.live_view: Any = None
         self.view_topics = False  # the page and the events on live_view/* (set by view_page)
         self.params: Dict[str, Any] = {}
@@ -398,6 +401,16 @@ class NodeCore(object):
         self.checkpoint()
         if self.params["publish_state"]:
             self.publish_state()
+        if self.view_topics:
+            self.heartbeat()
+
+    def heartbeat(self) -> None:
+        """Every half second, while someone watches: a record saying this node is there, so
+        that a remote live view can tell a quiet robot from one that is gone."""
+        now = time.monotonic()
+        if now - self.beat >= HEARTBEAT_SECONDS and self.text_subscribers(VIEW_EVENTS_TOPIC) > 0:
+            self.beat = now
+            self.publish_text(VIEW_EVENTS_TOPIC, HEARTBEAT)
 
     def close(self) -> None:
         """At shutdown: close the live view and the event log, and say how many cycles ran
