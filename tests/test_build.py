@@ -153,3 +153,83 @@ def test_ros2_package_builds_with_colcon_and_runs_from_the_install_space(ros2: R
 
     assert ros2.spin_until(wall, 10)
     assert lefts[0].data == 90 and moves[0].linear.x == pytest.approx(0.3)
+
+
+def readme_steps(package: Path, workspace: Path) -> list[str]:
+    """The commands of the package README's 'Build and run' block, with the workspace here."""
+    text = (package / "README.md").read_text()
+    block = text.split("```sh\n", 1)[1].split("```", 1)[0]
+    home = {"~/catkin_ws": str(workspace), "~/ros2_ws": str(workspace)}
+    lines = []
+    for line in block.splitlines():
+        for written, here in home.items():
+            line = line.replace(written, here)
+        if line.strip():
+            lines.append(line)
+    return lines
+
+
+def test_the_ros1_package_readme_builds_and_launches_as_written(ros1: Ros1, tmp_path: Path) -> None:
+    """`robosc build`, then the generated README's commands one by one, with a Python that
+    has no catkin_pkg first on PATH (as pyenv or a virtual environment puts it): before, the
+    README said nothing and catkin_make failed with "No module named 'catkin_pkg'"."""
+    if not shutil.which("catkin_make", path="/usr/bin"):
+        unavailable("catkin (Debian's catkin)")
+    done = subprocess.run(
+        [sys.executable, "-m", "robosc", "build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out")],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+    package = tmp_path / "out/ros1/maze_solver_robosc"  # the folder has the package's name
+    lint = run(["catkin_lint", "-W2", "--strict", str(package)], package)
+    assert "0 problems" in lint, lint
+    steps = readme_steps(package, tmp_path / "catkin_ws")
+    assert steps[-1] == "roslaunch maze_solver_robosc maze_solver_robosc.launch"
+    other = tmp_path / "pyenv"  # a python3 without ROS's packages, first on PATH (as pyenv puts its own)
+    other.mkdir()
+    (other / "python3").write_text(f'#!/bin/sh\nexec {sys.executable} -S "$@"\n')
+    (other / "python3").chmod(0o755)
+    env = {**ros1.env, "PATH": f"{other}:/usr/bin:/bin"}
+    assert subprocess.run(["python3", "-c", "import catkin_pkg"], env=env, capture_output=True).returncode != 0
+    script = "set -e\n" + "\n".join(steps[:-1]) + "\nexec " + steps[-1] + "\n"
+    ros1.processes.start("readme", ["/bin/bash", "-c", script], env, cwd=package)
+    health = ros1.client(
+        """
+start()
+state = Recorder("/health", String)
+assert wait_for(lambda: state.messages(), 240), "no health from the launched node"
+done(json.loads(state.messages()[-1].data))
+""",
+        timeout=300,
+    )
+    assert health["waiting_for"] == ["scan_diag_right", "scan_front", "scan_right"], ros1.processes.output()
+
+
+def test_the_ros2_package_readme_builds_as_written(ros2: Ros2, tmp_path: Path) -> None:
+    """The generated README's colcon steps, then its node without the ros2 command (which has
+    no wheels here: 'ros2 launch' is not run, see README's limitations)."""
+    if not COLCON.exists():
+        unavailable("colcon (pip install colcon-common-extensions)")
+    done = subprocess.run(
+        [sys.executable, "-m", "robosc", "build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out")],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+    package = tmp_path / "out/ros2/maze_solver_robosc"
+    workspace = tmp_path / "ros2_ws"
+    steps = readme_steps(package, workspace)
+    assert steps[-1] == "ros2 launch maze_solver_robosc maze_solver_robosc.launch.py"
+    env = {**ros2.env, "PATH": f"{COLCON.parent}:{os.environ['PATH']}"}
+    run("set -e\n" + "\n".join(steps[:-1]) + "\n", package, env)
+    readme = (package / "README.md").read_text()
+    alone = "install/maze_solver_robosc/lib/maze_solver_robosc/maze_solver_robosc_node"
+    assert f"`{alone}` does the same" in readme.replace("\n", " ")
+    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from std_msgs.msg import String
+
+    health: list[Any] = []
+    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    ros2.node.create_subscription(String, "/health", health.append, latched)
+    start = f"cd {workspace} && source install/setup.bash && exec {alone}"
+    ros2.processes.start("readme", ["/bin/bash", "-c", start], env)
+    assert ros2.spin_until(lambda: bool(health), 30), ros2.processes.output()

@@ -50,6 +50,7 @@ def test_ros1_catkin_package(tmp_path: Path) -> None:
     assert files == {
         "package.xml",
         "CMakeLists.txt",
+        "README.md",
         "setup.py",
         "scripts/pick_and_light_robosc_node",
         "launch/pick_and_light_robosc.launch",
@@ -97,6 +98,7 @@ def test_ros2_ament_python_package(tmp_path: Path) -> None:
         "package.xml",
         "setup.py",
         "setup.cfg",
+        "README.md",
         "resource/pick_and_light_robosc",
         "pick_and_light_robosc/__init__.py",
         "pick_and_light_robosc/node.py",
@@ -188,10 +190,12 @@ def test_generate_and_build_commands(tmp_path: Path) -> None:
     result = run("build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out"))
     assert result.returncode == 0, result.stderr
     for relative in (
-        "ros1/package.xml",
-        "ros1/src/maze_solver_robosc/live_view.html",
-        "ros2/setup.py",
-        "ros2/maze_solver_robosc/live_view.html",
+        "ros1/maze_solver_robosc/package.xml",  # the folder has the package's name (catkin_lint --strict)
+        "ros1/maze_solver_robosc/README.md",
+        "ros1/maze_solver_robosc/src/maze_solver_robosc/live_view.html",
+        "ros2/maze_solver_robosc/setup.py",
+        "ros2/maze_solver_robosc/README.md",
+        "ros2/maze_solver_robosc/maze_solver_robosc/live_view.html",
         "maze_solver_supervisor.py",
         "onboard/supervisor.py",
         "MazeSolver.cif",

@@ -105,6 +105,7 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
     """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
     stand-alone supervisor module (with the runtime it needs) and the CIF file."""
     from robosc.codegen.cif import to_cif
+    from robosc.codegen.ros import package_name
     from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
 
     result, plan = supervised(file, include, "a build")
@@ -114,8 +115,8 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
         f"{result.reachable_states:,} reachable states, {len(result.added_guards)} added guards"
     )
     page = live_page(result)
-    for ros in (1, 2):
-        target = out / f"ros{ros}"
+    for ros in (1, 2):  # ros1/ and ros2/ are like a workspace's src/: the folder is the package's name
+        target = out / f"ros{ros}" / package_name(plan)
         written = _write_package(plan, ros, mode, target, file, include, page, relative_names)
         say(f"  ROS {ros} package ({mode}): {target}  ({len(written)} files)")
     try:

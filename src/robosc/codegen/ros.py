@@ -156,6 +156,7 @@ def generate(
     folder = f"ros{ros}"
     files["package.xml"] = env.get_template(f"{folder}/package.xml.j2").render(**context)
     files["setup.py"] = env.get_template(f"{folder}/setup.py.j2").render(**context)
+    files["README.md"] = env.get_template(f"{folder}/README.md.j2").render(**context)
     if ros == 1:
         files[f"scripts/{rp.node}"] = env.get_template("ros1/node.py.j2").render(**context)
         files["CMakeLists.txt"] = env.get_template("ros1/CMakeLists.txt.j2").render(**context)

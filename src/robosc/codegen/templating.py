@@ -25,7 +25,13 @@ def environment(package: str = "robosc.codegen") -> jinja2.Environment:
     env.filters["edge_label"] = _edge_label
     env.filters["xml"] = xml.sax.saxutils.escape
     env.filters["xmlattr"] = xml.sax.saxutils.quoteattr
+    env.filters["md"] = _markdown_code
     return env
+
+
+def _markdown_code(value: object) -> str:
+    """Text from the model (or a file name) inside Markdown backticks: one line, no backtick."""
+    return "".join("'" if c == "`" else "?" if c < " " else c for c in str(value))
 
 
 def _python_literal(value: object) -> str:
