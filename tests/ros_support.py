@@ -187,7 +187,31 @@ def ros1(tmp_path: Path) -> Iterator[Ros1]:
 
 # ---- ROS 2 ---------------------------------------------------------------------------------
 
-_domains = itertools.count((os.getpid() % 50) * 4 + 10)
+def _domain_setting(name: str, default: int) -> int:
+    text = os.environ.get(name, "")
+    if not text:
+        return default
+    if not text.isdigit():
+        raise pytest.UsageError(f"{name}={text!r}: a whole number is wanted")
+    return int(text)
+
+
+# ROS 2 domain ids of the tests: DOMAIN_BASE, DOMAIN_BASE + 1, ... (round within DOMAIN_SPAN),
+# one per test. Set ROBOSC_TEST_DOMAIN_BASE (and ROBOSC_TEST_DOMAIN_SPAN) to keep the tests
+# off the domains other ROS 2 work on the machine uses; by default they start at an id taken
+# from the process id, so that two suites at once rarely meet.
+DOMAIN_BASE = _domain_setting("ROBOSC_TEST_DOMAIN_BASE", (os.getpid() % 50) * 2 + 10)
+DOMAIN_SPAN = _domain_setting("ROBOSC_TEST_DOMAIN_SPAN", 100)
+if DOMAIN_SPAN < 1 or DOMAIN_BASE + DOMAIN_SPAN - 1 > 232:  # Fast DDS takes ids 0 to 232
+    raise pytest.UsageError(
+        f"ROBOSC_TEST_DOMAIN_BASE={DOMAIN_BASE} and ROBOSC_TEST_DOMAIN_SPAN={DOMAIN_SPAN} leave the ids 0 to 232"
+    )
+_domains = itertools.count()
+
+
+def new_domain() -> int:
+    """A ROS 2 domain id no other test of this run has used (unless more than DOMAIN_SPAN ran)."""
+    return DOMAIN_BASE + next(_domains) % DOMAIN_SPAN
 
 
 class Ros2:
@@ -198,7 +222,7 @@ class Ros2:
         from rclpy.executors import SingleThreadedExecutor
 
         self.processes = processes
-        self.domain = next(_domains) % 200 + 10
+        self.domain = new_domain()
         os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
         os.environ["ROS_DOMAIN_ID"] = str(self.domain)
         self.env = {

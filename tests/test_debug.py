@@ -239,3 +239,13 @@ def test_plot_layout_is_bounded_whatever_the_log() -> None:
     assert [row.label for row in few.rows] == [f"e{i}" for i in range(50)]  # first occurrence, all shown
     assert sorted(row for _, row, _ in few.points) == list(range(50))
     assert all(abs(x - row / 10) <= 4.9 / COLUMNS for x, row, _ in few.points)  # within a column of the time
+
+
+def test_jsonl_to_mcap_and_back_keeps_every_field(tmp_path: Path, big_log: Path) -> None:
+    """Before: the simulator's 'step' (and any other field) was lost on the way."""
+    original = [json.loads(line) for line in big_log.read_text().splitlines()]
+    assert all("step" in r for r in original)
+    assert run("log", str(big_log), "-o", str(tmp_path / "x.mcap")).returncode == 0
+    assert run("log", str(tmp_path / "x.mcap"), "-o", str(tmp_path / "back.jsonl")).returncode == 0
+    back = [json.loads(line) for line in (tmp_path / "back.jsonl").read_text().splitlines()]
+    assert back == original

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from ros_support import _domains, ros1_available, ros2_available, unavailable
+from ros_support import new_domain, ros1_available, ros2_available, unavailable
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
 
@@ -37,7 +37,7 @@ def run(model: Path, world: str, ros: int, folder: Path, **options: object) -> R
     result = synthesize_file(model)
     assert result.ok
     plan = plan_supervisor(result)
-    options.setdefault("domain", next(_domains) % 200 + 10)
+    options.setdefault("domain", new_domain())
     return run_ros(load_world(WORLDS / world), plan, load_module(plan), ros, folder=folder, **options)  # type: ignore[arg-type]
 
 
@@ -176,7 +176,7 @@ def test_ending_robosc_sim_ends_every_process_it_started(tmp_path: Path, ros: in
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
     env[variable] = mark
     args = ["sim", str(WORLDS / "maze.yaml"), str(ROOT / "examples" / "maze_solver.rscd"), "--ros", str(ros)]
-    args += ["--robots", "2", "--speed", "1", "--timeout", "200", "--domain", str(next(_domains) % 200 + 10)]
+    args += ["--robots", "2", "--speed", "1", "--timeout", "200", "--domain", str(new_domain())]
     log = tmp_path / "sim.log"
     with log.open("wb") as out:
         process = children.start([sys.executable, "-m", "robosc", *args], env=env, stdout=out, stderr=subprocess.STDOUT)

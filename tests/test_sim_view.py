@@ -18,7 +18,7 @@ from typing import Any
 import pytest
 
 from robosc import children
-from ros_support import _domains, free_port, ros1_available, ros2_available, stop_all, unavailable, wait_until
+from ros_support import free_port, new_domain, ros1_available, ros2_available, stop_all, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
@@ -59,7 +59,7 @@ def start_sim(run: Run, ros: int, robots: int, domain: int | None = None, name: 
     args += ["--ros", str(ros), "--robots", str(robots), "--speed", "1", "--timeout", "200"]
     env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
     if ros == 2:
-        domain = domain if domain is not None else next(_domains) % 200 + 10
+        domain = domain if domain is not None else new_domain()
         args += ["--domain", str(domain)]
     run.start(name, args, env)
     found: list[str] = []

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from robosc.record import record
+from robosc.record import field, record
 
 CHANNEL = "/robosc/events"
 SCHEMA = {
@@ -48,9 +48,11 @@ class Record:
     controllable: bool
     data: Any
     state: dict[str, Any]
+    extra: dict[str, Any] = field(default_factory=dict)  # other fields of the record (the simulator's step), kept
 
     def as_json(self) -> dict[str, Any]:
         return {
+            **self.extra,
             "time": self.time,
             "event": self.event,
             "controllable": self.controllable,
@@ -78,7 +80,11 @@ def _record(raw: Any, where: str) -> Record:
     if not isinstance(controllable, bool):
         raise LogError(f"{where}: 'controllable' must be true or false")
     state = raw.get("state") or {}
-    return Record(float(time), event, controllable, raw.get("data"), state if isinstance(state, dict) else {})
+    extra = {k: v for k, v in raw.items() if k not in _FIELDS}
+    return Record(float(time), event, controllable, raw.get("data"), state if isinstance(state, dict) else {}, extra)
+
+
+_FIELDS = ("time", "event", "controllable", "data", "state")
 
 
 def _shown(value: Any) -> str:
