@@ -69,23 +69,41 @@ def test_grammar_test_fails_on_a_wrong_scope(built: str, tmp_path: Path) -> None
     assert subprocess.run(args, cwd=tmp_path, capture_output=True).returncode == 0
 
 
-def test_packages_as_a_vsix(built: str) -> None:
+def test_packages_as_a_bundled_vsix_of_robosc_s_version(built: str, tmp_path: Path) -> None:
+    """esbuild bundles the extension and its language client into one file (before: 211 files,
+    node_modules and all, and vsce's warning); the extension's version is robosc's."""
+    import robosc
+
     vsix = EXTENSION / "robosc.vsix"
     vsix.unlink(missing_ok=True)
-    run_npm(built, "run", "package")
+    done = run_npm(built, "run", "package")
+    assert "you should bundle your extension" not in done.stdout + done.stderr, done.stdout  # vsce's warning
     with zipfile.ZipFile(vsix) as archive:
         names = set(archive.namelist())
         manifest = json.loads(archive.read("extension/package.json"))
     for needed in (
-        "extension/out/extension.js",
-        "extension/out/commands.js",
+        "extension/dist/extension.js",
         "extension/syntaxes/robosc.tmLanguage.json",
         "extension/language-configuration.json",
-        "extension/node_modules/vscode-languageclient/package.json",  # the client travels with it
     ):
         assert needed in names, needed
-    assert not any(n.startswith("extension/src/") or n.startswith("extension/tests/") for n in names)
+    assert len(names) <= 12, sorted(names)
+    assert not any(n.startswith(("extension/src/", "extension/tests/", "extension/node_modules/")) for n in names)
     assert manifest["contributes"]["languages"][0]["extensions"] == [".rscd"]
+    assert manifest["main"] == "./dist/extension.js"
+    assert manifest["version"] == robosc.__version__
+    # the bundle loads (with a stand-in for the editor's 'vscode' module) and has the client in it
+    stub = tmp_path / "node_modules" / "vscode"
+    stub.mkdir(parents=True)
+    (stub / "index.js").write_text("module.exports = new Proxy({}, { get: () => function () {} });\n")
+    script = "const e = require(process.argv[1]); console.log(typeof e.activate, typeof e.deactivate);"
+    loaded = subprocess.run(
+        ["node", "-e", script, str(EXTENSION / "dist" / "extension.js")],
+        env={**__import__("os").environ, "NODE_PATH": str(tmp_path / "node_modules")},
+        capture_output=True, text=True, timeout=60,
+    )
+    assert loaded.stdout.split() == ["function", "function"], loaded.stderr
+    assert "LanguageClient" in (EXTENSION / "dist" / "extension.js").read_text()
 
 
 def test_the_server_command_line_starts_robosc_lsp(built: str, tmp_path: Path) -> None:
