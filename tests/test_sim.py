@@ -307,3 +307,29 @@ def test_robosc_sim_refuses_a_model_that_moves_no_robot(
     assert code == 2
     assert "pick_and_light.rscd sends none of the commands the robots of" in err
     assert "(/cmd_vel, /rotate_left, /rotate_right): nothing would move them" in err
+
+
+def test_robots_in_the_animation_are_told_apart_by_colour_and_name(tmp_path: Path) -> None:
+    """Three maze solvers from one start drive the same way (they do not see each other):
+    before, the GIF showed one robot; now each has its colour, its name (stacked when they
+    share a spot) and a legend entry, and none hides another entirely."""
+    import matplotlib.pyplot as plt
+
+    from robosc.sim.recording import ROBOT_COLOURS, scene
+
+    maze = load_world(WORLDS / "maze.yaml")
+    report = run_local(maze, supervisor(ROOT / "examples" / "maze_solver.rscd"), robots=3, timeout=5)
+    fig, draw, frames = scene(report, maze)
+    try:
+        artists = draw(frames - 1)
+        ax = fig.axes[0]
+        names = [t for t in ax.texts]
+        assert [t.get_text() for t in names] == ["robot1", "robot2", "robot3"]
+        assert [t.get_color() for t in names] == ROBOT_COLOURS[:3]
+        positions = [t.get_position() for t in names]
+        assert len(set(positions)) == 3  # on one spot, the names are stacked, not on top of each other
+        assert [t.get_text() for t in ax.get_legend().get_texts()] == ["robot1", "robot2", "robot3"]
+        bodies = [a for a in artists if a.__class__.__name__ == "Circle"]
+        assert len({b.radius for b in bodies}) == 3  # the later ones smaller: all three show
+    finally:
+        plt.close(fig)

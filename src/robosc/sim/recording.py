@@ -146,6 +146,22 @@ def animate(report: Report, world: World, output: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.animation import FuncAnimation, PillowWriter
+
+    fig, draw, frames = scene(report, world)
+    animation = FuncAnimation(fig, draw, frames=frames, blit=False)
+    animation.save(str(output), writer=PillowWriter(fps=ANIMATION_FPS))
+    plt.close(fig)
+    return output
+
+
+ROBOT_COLOURS = ["#4e79a7", "#f28e2b", "#76b7b2", "#b07aa1", "#edc948", "#9c755f", "#ff9da7", "#bab0ac"]
+
+
+def scene(report: Report, world: World) -> tuple[Any, Any, int]:
+    """The animation's figure, its ``draw(frame)`` and the number of frames. Each robot has a
+    colour of its own, its name next to it and in the legend; robots on the same spot (they
+    do not see each other) have their names stacked, so that none hides another unseen."""
+    import matplotlib.pyplot as plt
     from matplotlib.patches import Circle, Rectangle
 
     width, height = world.size
@@ -165,38 +181,43 @@ def animate(report: Report, world: World, output: Path) -> Path:
         ax.plot([p[0] for p in wall], [p[1] for p in wall], color="black", linewidth=2)
     for x, y, w, h in world.boxes:
         ax.add_patch(Rectangle((x - w / 2, y - h / 2), w, h, color="#e15759"))
-    colors = ["#4e79a7", "#f28e2b", "#76b7b2", "#b07aa1", "#edc948", "#9c755f", "#ff9da7", "#bab0ac"]
     radius = world.robot.radius
-    paths, bodies, rays = [], [], []
-    for k in range(len(report.robots)):
-        color = colors[k % len(colors)]
-        (path,) = ax.plot([], [], color=color, linewidth=1)
-        body = Circle((0, 0), radius, color=color, zorder=3)
+    paths, bodies, rays, names = [], [], [], []
+    for k, robot in enumerate(report.robots):
+        color = ROBOT_COLOURS[k % len(ROBOT_COLOURS)]
+        (path,) = ax.plot([], [], color=color, linewidth=1, label=robot.name)
+        body = Circle((0, 0), radius * (1.0 - 0.15 * (k % 4)), color=color, zorder=3 + k)  # the later ones smaller, on top
         ax.add_patch(body)
         (ray,) = ax.plot([], [], color=color, linewidth=0.5, alpha=0.5)
+        name = ax.text(0, 0, robot.name, color=color, fontsize=7, fontweight="bold", zorder=10)
         paths.append(path)
         bodies.append(body)
         rays.append(ray)
+        names.append(name)
+    if len(report.robots) > 1:
+        ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
     title = ax.set_title("", fontsize=9, loc="left")
     end = report.simulated
     frames = max(1, int(end / ANIMATION_STEP) + 1)
     lidar = world.robot.lidar
+    step = 0.035 * height  # between stacked names
 
     def draw(frame: int) -> list[Any]:
         t = min(end, frame * ANIMATION_STEP)
+        placed: list[tuple[float, float]] = []
         for k, status in enumerate(report.status):
             shown = [p for p in status.trajectory if p[0] <= t + 1e-9] or status.trajectory[:1]
             paths[k].set_data([p[1] for p in shown], [p[2] for p in shown])
             x, y, heading = shown[-1][1], shown[-1][2], shown[-1][3]
             bodies[k].center = (x, y)
             rays[k].set_data(*_rays(status.scans, t, x, y, heading, lidar.beams, lidar.range_max))
+            near = sum(1 for px, py in placed if abs(px - x) < 2 * radius and abs(py - y) < 2 * radius)
+            placed.append((x, y))
+            names[k].set_position((x + radius * 1.2, y + radius * 1.2 + near * step))
         title.set_text(f"t = {t:5.1f} s")
-        return [*paths, *bodies, *rays, title]
+        return [*paths, *bodies, *rays, *names, title]
 
-    animation = FuncAnimation(fig, draw, frames=frames, blit=False)
-    animation.save(str(output), writer=PillowWriter(fps=ANIMATION_FPS))
-    plt.close(fig)
-    return output
+    return fig, draw, frames
 
 
 def _rays(
