@@ -25,8 +25,9 @@ def check(files: tuple[str, ...], include: tuple[str, ...], output: str, list_co
     if list_codes:
         from robosc.language.codes import Code
 
+        column = max(len(code.value) for code in Code) + 1
         for code in Code:
-            click.echo(f"{code.value:<20} {code.description}")
+            click.echo(f"{code.value:<{column}} {code.description}")
         raise exit_with(EXIT_OK)
     if not files:
         raise input_problem("check needs at least one FILE (or --list-codes)")
