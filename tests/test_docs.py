@@ -25,10 +25,11 @@ MODELS = sorted([*DOCS.glob("models/*.rscd"), *DOCS.glob("rules/*.rscd")])
 EXPECT = re.compile(r"// expect: (\S+)(?: \((synthesize|build)\))?$")
 
 
-def robosc(*args: str, cwd: Path, timeout: float = 300) -> subprocess.CompletedProcess[str]:
+def robosc(*args: str, cwd: Path, timeout: float = 300, stdin: str = "") -> subprocess.CompletedProcess[str]:
     env = {k: v for k, v in os.environ.items() if k != "COLUMNS"}
     return subprocess.run(
-        [sys.executable, "-m", "robosc", *args], cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout
+        [sys.executable, "-m", "robosc", *args], cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout,
+        input=stdin,
     )
 
 
@@ -124,19 +125,21 @@ def test_a_command_in_the_docs_prints_what_the_page_shows(
 ) -> None:
     """Run from a folder holding the repository's examples/ and docs/ (outputs go there). Each
     shown line is printed, in order; '...' stands for lines left out, and a line ending in
-    '...' for its beginning."""
+    '...' for its beginning. A line '> TEXT' is typed at robosc simulate's prompt."""
     if " --ros 2" in command and not ros2_available():
         unavailable("ROS 2 (pip install '.[ros2]')")
     if " sim " in f" {command} ":
         pytest.importorskip("irsim", reason="robosc sim needs IR-SIM")
     for name in ("examples", "docs"):
         (tmp_path / name).symlink_to(ROOT / name)
-    done = robosc(*shlex.split(command)[1:], cwd=tmp_path)
+    typed = "".join(line[2:] + "\n" for line in shown if line.startswith("> "))
+    done = robosc(*shlex.split(command)[1:], cwd=tmp_path, stdin=typed)
     assert done.returncode == status, f"{page}: {command}\n{done.stdout[-3000:]}\n{done.stderr[-3000:]}"
-    printed = [line.rstrip() for line in (done.stdout + done.stderr).splitlines()]
+    # what was typed is not echoed: the answer follows the prompt on its line
+    printed = [re.sub(r"^(> )+", "", line.rstrip()) for line in (done.stdout + done.stderr).splitlines()]
     at = 0
     for line in shown:
-        if line.strip() == "...":
+        if line.strip() == "..." or line.startswith("> "):
             continue
         wanted = line.rstrip()
         prefix = wanted.endswith("...")
