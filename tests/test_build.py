@@ -103,16 +103,20 @@ done({"left": lefts.messages()[0].data, "move": moves.messages()[0].linear.x})
     assert len(found) == 1, found
     os.kill(int(found[0]), signal.SIGKILL)
     assert wait_until(lambda: pids() not in ([], found), 30), "not respawned"
-    turning = ros1.client(
-        """
+    assert health(ros1, "/robot7/health", 20)["resumed"] is True  # the respawned node resumed
+
+
+def health(ros1: Ros1, topic: str, wait: float) -> Any:
+    """The latest report a node put on its latched health topic (within ``wait`` seconds)."""
+    return ros1.client(
+        f"""
 start()
-state = Recorder("/robot7/health", String)
-assert wait_for(lambda: state.messages(), 20), "no health from the respawned node"
+state = Recorder({topic!r}, String)
+assert wait_for(lambda: state.messages(), {wait}), "no health from the node"
 done(json.loads(state.messages()[-1].data))
 """,
-        timeout=60,
+        timeout=wait + 60,
     )
-    assert turning["resumed"] is True
 
 
 def test_ros2_package_builds_with_colcon_and_runs_from_the_install_space(ros2: Ros2, tmp_path: Path) -> None:
@@ -193,16 +197,8 @@ def test_the_ros1_package_readme_builds_and_launches_as_written(ros1: Ros1, tmp_
     assert subprocess.run(["python3", "-c", "import catkin_pkg"], env=env, capture_output=True).returncode != 0
     script = "set -e\n" + "\n".join(steps[:-1]) + "\nexec " + steps[-1] + "\n"
     ros1.processes.start("readme", ["/bin/bash", "-c", script], env, cwd=package)
-    health = ros1.client(
-        """
-start()
-state = Recorder("/health", String)
-assert wait_for(lambda: state.messages(), 240), "no health from the launched node"
-done(json.loads(state.messages()[-1].data))
-""",
-        timeout=300,
-    )
-    assert health["waiting_for"] == ["scan_diag_right", "scan_front", "scan_right"], ros1.processes.output()
+    report = health(ros1, "/health", 240)  # catkin_make first, then roslaunch
+    assert report["waiting_for"] == ["scan_diag_right", "scan_front", "scan_right"], ros1.processes.output()
 
 
 def test_the_ros2_package_readme_builds_as_written(ros2: Ros2, tmp_path: Path) -> None:
@@ -227,9 +223,9 @@ def test_the_ros2_package_readme_builds_as_written(ros2: Ros2, tmp_path: Path) -
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import String
 
-    health: list[Any] = []
+    reports: list[Any] = []
     latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
-    ros2.node.create_subscription(String, "/health", health.append, latched)
+    ros2.node.create_subscription(String, "/health", reports.append, latched)
     start = f"cd {workspace} && source install/setup.bash && exec {alone}"
     ros2.processes.start("readme", ["/bin/bash", "-c", start], env)
-    assert ros2.spin_until(lambda: bool(health), 30), ros2.processes.output()
+    assert ros2.spin_until(lambda: bool(reports), 30), ros2.processes.output()
