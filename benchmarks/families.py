@@ -92,3 +92,39 @@ FAMILIES = {
     "enum sensors (N components)": enum_sensors,
     "dining philosophers (N)": philosophers,
 }
+
+
+def ring(n: int) -> str:
+    """N robots on a one-way ring of 2N zones, written as today's language allows (a copied
+    component per robot): robot i starts in zone 2i; `go{i}` (the controller's) starts a move
+    into the next zone, `arrived{i}` (the robot's) ends it. A zone is held by the robot in it
+    and by the one moving into it or out of it; a robot may start a move only into a zone no
+    other robot holds: a requirement per robot naming every other robot for every zone."""
+    zones = 2 * n
+    lines = ["robot Ring {"]
+    for i in range(n):
+        states = []
+        for k in range(zones):
+            initial = "initial " if k == 2 * i else ""
+            states.append(f"            {initial}marked state at{k} {{ on request to go{i} goto moving{k} }}")
+            states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
+        lines.append(
+            f"    component R{i} {{\n"
+            f"        incoming message go{i} with type: none\n"
+            f"        outgoing message arrived{i} with type: none\n"
+            "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
+        )
+    for i in range(n):
+        parts = []
+        for k in range(zones):
+            nxt = (k + 1) % zones
+            held = " or ".join(
+                f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i
+            )
+            parts.append(f"(R{i}.at{k} => !({held}))" if held else "true")
+        lines.append(f"    requirement go{i} needs " + " and ".join(parts))
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+FLEETS = {"ring": ring}  # fleet families (benchmarks/fleet_synthesis.py): N robots

@@ -190,3 +190,17 @@ def test_explicit_synthesis_says_it_is_a_cross_check_with_the_figures_it_compare
     assert "0 of 0" not in done.stdout
     data = json.loads(run_in(None, "synthesize", "--explicit", "--json", str(EXAMPLES / "maze_solver.rscd")).stdout)
     assert data["cross_check"] == {"method": "symbolic", "reachable_states": 128, "agree": True}
+
+
+def test_synthesize_stats_prints_effort_that_does_not_depend_on_the_machine() -> None:
+    """--stats: CUDD's peak live nodes and the image / preimage computations, the same on
+    every run (wall time is not: the machine is shared)."""
+    runs = [json.loads(run_in(None, "synthesize", "--stats", "--json", str(EXAMPLES / "shelf_picker.rscd")).stdout)
+            for _ in range(2)]
+    first, second = (r["effort"] for r in runs)
+    assert first == second
+    assert first["peak_live_nodes"] > 100 and first["images"] > 0 and first["preimages"] > 0
+    assert first["variables"] > 0
+    text = run_in(None, "synthesize", "--stats", str(EXAMPLES / "shelf_picker.rscd")).stdout
+    assert f"effort: {first['peak_live_nodes']:,} peak live BDD nodes, {first['images']:,} images" in text
+    assert "effort" not in json.loads(run_in(None, "synthesize", "--json", str(EXAMPLES / "shelf_picker.rscd")).stdout)

@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from robosc.api import SynthesisResult, synthesize_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, width
+from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, say, width
 from robosc.cli.table import Cell, boxed, fill
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
@@ -152,7 +152,15 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
 @click.option("--json", "as_json_output", is_flag=True, help="Print the result as JSON.")
 @click.option("--explicit", is_flag=True, help="Use explicit-state synthesis (small models; for cross-checking).")
 @click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
-def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explicit: bool, show_network: bool) -> None:
+@click.option(
+    "--stats",
+    is_flag=True,
+    help="Also print the effort of symbolic synthesis in figures that do not depend on the machine: "
+    "CUDD's peak live BDD nodes, image and preimage computations.",
+)
+def synthesize(
+    file: str, include: tuple[str, ...], as_json_output: bool, explicit: bool, show_network: bool, stats: bool
+) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
@@ -166,6 +174,8 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
         import json
 
         data = as_json(result, warnings)
+        if stats:
+            data["effort"] = result.details.get("effort")
         if cross_check is not None:
             data["cross_check"] = {
                 "method": cross_check.method,
@@ -175,5 +185,12 @@ def synthesize(file: str, include: tuple[str, ...], as_json_output: bool, explic
         click.echo(json.dumps(data, indent=2))
     else:
         print_result(result, cross_check)
+        effort: Any = result.details.get("effort")
+        if stats and effort is not None:
+            say(
+                f"effort: {effort['peak_live_nodes']:,} peak live BDD nodes, {effort['images']:,} images, "
+                f"{effort['preimages']:,} preimages, {effort['variables']} state bits; "
+                f"{result.seconds * 1000:.1f} ms"
+            )
         print_warnings(warnings)
     raise exit_with(EXIT_OK if result.ok else EXIT_MODEL_ERRORS)

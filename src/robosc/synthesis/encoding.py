@@ -77,6 +77,7 @@ class Encoding:
         # reordering (sifting) cost 1.2x to 4x the time it saved.
         self.bdd.configure(reordering=False)
         self.fields: dict[int, Field] = {}
+        self.images = self.preimages = 0  # post() and pre() calls: effort that does not depend on the machine
         order: list[str] = []
         items: list[tuple[Item, str, Sequence[Any]]] = [
             (item, item.name, item.locations)
@@ -149,9 +150,28 @@ class Encoding:
             result &= self.bdd.var(bit).equiv(self.bdd.var(bit + "'"))
         return result
 
+    # -- effort ------------------------------------------------------------------------
+    def effort(self) -> dict[str, int]:
+        """Deterministic figures of the work done so far (they do not depend on the machine's
+        speed): CUDD's peak of live BDD nodes, the nodes in the unique table now, and the
+        image and preimage computations."""
+        import warnings
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # dd's note that 'mem' is now in bytes
+            figures = self.bdd.statistics()
+        return {
+            "peak_live_nodes": int(figures["peak_live_nodes"]),
+            "nodes": int(figures["n_nodes"]),
+            "images": self.images,
+            "preimages": self.preimages,
+            "variables": len(self.x_vars),
+        }
+
     # -- state sets ------------------------------------------------------------------------
     def pre(self, relation: Relation, target: BDD) -> BDD:
         """States with a transition in ``relation`` into ``target``."""
+        self.preimages += 1
         if not relation.primed:
             return relation.bdd & target
         renamed = self.bdd.let(relation.to_primed, target)
@@ -159,6 +179,7 @@ class Encoding:
 
     def post(self, relation: Relation, source: BDD) -> BDD:
         """States reached by a transition in ``relation`` from ``source``."""
+        self.images += 1
         if not relation.bits:
             return relation.bdd & source
         return self.bdd.let(relation.from_primed, cudd.and_exists(relation.bdd, source, relation.bits))

@@ -146,7 +146,12 @@ def synthesize_symbolic(network: Network) -> SynthesisResult:
         explanation = explain(fp)
         seconds = time.perf_counter() - start
         return SynthesisResult(
-            network, "symbolic", False, explanation=explanation, seconds=seconds, details={"fixpoint": fp}
+            network,
+            "symbolic",
+            False,
+            explanation=explanation,
+            seconds=seconds,
+            details={"fixpoint": fp, "effort": enc.effort()},
         )
     guards = []
     for event in network.controllable:
@@ -158,7 +163,7 @@ def synthesize_symbolic(network: Network) -> SynthesisResult:
         if (care & ~beyond) != enc.false:
             added = readable(enc, beyond, care)
         guards.append(EventGuard(event, required, added))
-    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd)}
+    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd), "effort": enc.effort()}
     return SynthesisResult(
         network,
         "symbolic",

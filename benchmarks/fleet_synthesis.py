@@ -1,0 +1,97 @@
+"""Synthesis for fleets: how each method's cost grows with the number of robots.
+
+Families (benchmarks/families.py): ``ring`` — N robots on a one-way ring of 2N zones, a zone
+held by at most one robot, written as today's language allows (a copied component per robot,
+a requirement per robot naming every other robot). Each run is a process of its own with a
+time limit and an address-space limit, so that a method that blows up is cut off and the
+table still prints; figures that do not depend on the machine (peak live BDD nodes, image and
+preimage computations) are printed next to the wall time and the peak memory.
+
+Run:  python benchmarks/fleet_synthesis.py [--sizes 2,4,6,7,8,9] [--timeout 150] [--memory-gb 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+RUN = r"""
+import json, resource, sys, time
+sys.path.insert(0, sys.argv[1])
+from families import FLEETS
+from robosc.api import check_text, synthesize_model
+family, n, method = sys.argv[2], int(sys.argv[3]), sys.argv[4]
+text = FLEETS[family](n)
+start = time.perf_counter()
+model = check_text(text).model
+checked = time.perf_counter()
+result = synthesize_model(model, method)
+done = time.perf_counter()
+effort = result.details.get("effort") or {}
+print(json.dumps({
+    "lines": len(text.splitlines()), "check": checked - start, "synthesis": done - checked,
+    "states": result.reachable_states, "ok": result.ok, "added": len(result.added_guards),
+    "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **effort,
+}))
+"""
+
+
+def measure(family: str, n: int, method: str, timeout: float, memory_gb: float) -> dict[str, object]:
+    limit = int(memory_gb * (1 << 30))
+
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+
+    start = time.perf_counter()
+    try:
+        done = subprocess.run(
+            [sys.executable, "-c", RUN, str(HERE), family, str(n), method],
+            capture_output=True, text=True, timeout=timeout, preexec_fn=cap, check=False,
+        )
+    except subprocess.TimeoutExpired:
+        return {"failed": f"over {timeout:g} s"}
+    wall = time.perf_counter() - start
+    if done.returncode != 0:
+        last = (done.stderr.strip().splitlines() or ["?"])[-1]
+        return {"failed": "out of memory" if "MemoryError" in done.stderr else last[:60], "wall": wall}
+    figures: dict[str, object] = json.loads(done.stdout.strip().splitlines()[-1])
+    figures["wall"] = wall
+    return figures
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", default="2,4,6,7,8,9")
+    parser.add_argument("--families", default="ring")
+    parser.add_argument("--methods", default="symbolic")
+    parser.add_argument("--timeout", type=float, default=150.0)
+    parser.add_argument("--memory-gb", type=float, default=2.0)
+    args = parser.parse_args()
+    sizes = [int(s) for s in args.sizes.split(",")]
+    print(f"limits: {args.timeout:g} s and {args.memory_gb:g} GB of address space per run\n")
+    print("| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages | controlled states |")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for family in args.families.split(","):
+        for n in sizes:
+            for method in args.methods.split(","):
+                f = measure(family, n, method, args.timeout, args.memory_gb)
+                if "failed" in f:
+                    print(f"| {family} | {n} | {method} | | | {f['failed']} | | | | | |", flush=True)
+                    continue
+                print(
+                    f"| {family} | {n} | {method} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
+                    f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
+                    f"{f.get('preimages', '-')} | {f['states']:,} |",
+                    flush=True,
+                )
+
+
+if __name__ == "__main__":
+    main()
