@@ -469,3 +469,22 @@ def test_a_missing_error_transition_is_named_before_the_requirements_it_leaves_s
     assert [f.text.split(":")[0] for f in why.consequence.fixes] == [
         "add 'on error from unload' to state emptying of Tray"
     ]
+
+
+@pytest.mark.parametrize("family", ["ring", "philosophers", "transfer_line"])
+def test_conditions_kept_apart_from_the_relations_give_the_same_supervisor(monkeypatch, family: str) -> None:
+    """Requirements large enough to be kept apart from the transition relations (fleets) and
+    small ones conjoined into them give one and the same supervisor, which the explicit-state
+    method confirms."""
+    import families
+    from robosc.synthesis import encoding
+
+    model = load(getattr(families, family)(3))
+    results = []
+    for threshold in (0, 10**9):  # every condition kept apart; every condition conjoined
+        monkeypatch.setattr(encoding, "SMALL_GUARD", threshold)
+        result = synthesize_model(model)
+        results.append((result.reachable_states, [(g.event.name, render(g.added) if g.added else None) for g in result.guards]))
+    assert results[0] == results[1]
+    explicit = synthesize_explicit(build_network(model))
+    assert explicit.reachable_states == results[0][0]

@@ -41,6 +41,9 @@ class Field:
         return tuple(b + "'" for b in self.bits)
 
 
+SMALL_GUARD = 2000  # BDD nodes: a condition this small is conjoined into a relation, a larger one kept apart
+
+
 @record
 class Relation:
     """A transition relation that changes only ``bits``: every other bit keeps its value.
@@ -52,6 +55,7 @@ class Relation:
     bdd: BDD
     bits: list[str]
     primed: list[str]
+    guard: BDD | None = None  # only from states where this holds (kept apart: see restrict)
 
     @property
     def to_primed(self) -> dict[str, str]:
@@ -62,8 +66,15 @@ class Relation:
         return dict(zip(self.primed, self.bits, strict=True))
 
     def restrict(self, condition: BDD) -> Relation:
-        """The same relation, only from states where ``condition`` holds."""
-        return Relation(self.bdd & condition, self.bits, self.primed)
+        """The same relation, only from states where ``condition`` holds. A large condition is
+        kept apart from the relation's BDD and applied to the state sets instead (a preimage is
+        and-ed with it, a source set before an image): a requirement that reads the whole fleet
+        is then never multiplied into the relation (on the ring family, conjoining them took a
+        quarter of synthesis; 8 robots: 39 s and 16 M peak nodes before, 24 s and 10.5 M after).
+        A small one is conjoined, which is as fast for the other families."""
+        if condition.dag_size <= SMALL_GUARD:  # small: into the relation, as it costs nothing per step
+            return Relation(self.bdd & condition, self.bits, self.primed, self.guard)
+        return Relation(self.bdd, self.bits, self.primed, condition if self.guard is None else self.guard & condition)
 
 
 class Encoding:
@@ -173,20 +184,24 @@ class Encoding:
         """States with a transition in ``relation`` into ``target``."""
         self.preimages += 1
         if not relation.primed:
-            return relation.bdd & target
-        renamed = self.bdd.let(relation.to_primed, target)
-        return cudd.and_exists(relation.bdd, renamed, relation.primed)
+            found = relation.bdd & target
+        else:
+            found = cudd.and_exists(relation.bdd, self.bdd.let(relation.to_primed, target), relation.primed)
+        return found if relation.guard is None else found & relation.guard
 
     def post(self, relation: Relation, source: BDD) -> BDD:
         """States reached by a transition in ``relation`` from ``source``."""
         self.images += 1
+        if relation.guard is not None:
+            source = source & relation.guard
         if not relation.bits:
             return relation.bdd & source
         return self.bdd.let(relation.from_primed, cudd.and_exists(relation.bdd, source, relation.bits))
 
     def enabled(self, relation: Relation) -> BDD:
         """States where a transition in ``relation`` can happen."""
-        return cudd.and_exists(relation.bdd, self.true, relation.primed) if relation.primed else relation.bdd
+        found = cudd.and_exists(relation.bdd, self.true, relation.primed) if relation.primed else relation.bdd
+        return found if relation.guard is None else found & relation.guard
 
     def relation(self, bdd: BDD, fields: Sequence[Field]) -> Relation:
         bits = [b for f in fields for b in f.bits]
