@@ -127,4 +127,64 @@ def ring(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-FLEETS = {"ring": ring}  # fleet families (benchmarks/fleet_synthesis.py): N robots
+def warehouse(n: int) -> str:
+    """N robots in a warehouse, written as today's language allows (a copied component per
+    robot): a one-way loop of 2N+2 aisle zones, each taking one robot at a time; zone 1 is a
+    door the robots pass only while it is open (the door opens and closes on command and says
+    when it is done, and may close only while no robot is in it); one charger off zone 0, for
+    one robot at a time, which says when the robot is charged. A robot rests (marked) only in
+    an aisle zone, not in the door or while charging."""
+    zones = 2 * n + 2
+    door = 1
+    lines = ["robot Warehouse {"]
+    lines.append(
+        "    component Door {\n"
+        "        incoming message open_door with type: none\n"
+        "        incoming message close_door with type: none\n"
+        "        outgoing message door_opened with type: none\n"
+        "        outgoing message door_closed with type: none\n"
+        "        behaviour {\n"
+        "            initial marked state closed { on request to open_door goto opening }\n"
+        "            state opening { on response from door_opened goto open }\n"
+        "            marked state open { on request to close_door goto closing }\n"
+        "            state closing { on response from door_closed goto closed }\n"
+        "        }\n    }"
+    )
+    for i in range(n):
+        states = []
+        for k in range(zones):
+            initial = "initial " if k == 2 * i + 2 else ""
+            marked = "" if k == door else "marked "
+            charge = f" on request to dock{i} goto charging" if k == 0 else ""
+            states.append(f"            {initial}{marked}state at{k} {{ on request to go{i} goto moving{k}{charge} }}")
+            states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
+        states.append(f"            state charging {{ on response from charged{i} goto at0 }}")
+        lines.append(
+            f"    component R{i} {{\n"
+            f"        incoming message go{i} with type: none\n"
+            f"        incoming message dock{i} with type: none\n"
+            f"        outgoing message arrived{i} with type: none\n"
+            f"        outgoing message charged{i} with type: none\n"
+            "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
+        )
+    for i in range(n):
+        parts = []
+        for k in range(zones):
+            nxt = (k + 1) % zones
+            held = " or ".join(
+                f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i
+            )
+            free = f"!({held})" if held else "true"
+            if nxt == door:
+                free = f"{free} and Door.open"
+            parts.append(f"(R{i}.at{k} => {free})")
+        lines.append(f"    requirement go{i} needs " + " and ".join(parts))
+        others = " or ".join(f"R{j}.charging" for j in range(n) if j != i)
+        lines.append(f"    requirement dock{i} needs " + (f"!({others})" if others else "true"))
+    in_door = " or ".join(f"R{j}.at{door} or R{j}.moving{door - 1} or R{j}.moving{door}" for j in range(n))
+    lines.append(f"    requirement close_door needs !({in_door})")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+FLEETS = {"ring": ring, "warehouse": warehouse}  # fleet families (benchmarks/fleet_synthesis.py): N robots

@@ -1,13 +1,15 @@
 """Synthesis for fleets: how each method's cost grows with the number of robots.
 
-Families (benchmarks/families.py): ``ring`` — N robots on a one-way ring of 2N zones, a zone
-held by at most one robot, written as today's language allows (a copied component per robot,
-a requirement per robot naming every other robot). Each run is a process of its own with a
+Families (benchmarks/families.py), written as today's language allows (a copied component per
+robot, a requirement per robot naming every other robot): ``ring`` — N robots on a one-way ring
+of 2N zones, a zone held by at most one robot; ``warehouse`` — a one-way loop of 2N+2 aisle
+zones with a door the robots pass only while it is open and one charger for one robot. Each run is a process of its own with a
 time limit and an address-space limit, so that a method that blows up is cut off and the
 table still prints; figures that do not depend on the machine (peak live BDD nodes, image and
 preimage computations) are printed next to the wall time and the peak memory.
 
-Run:  python benchmarks/fleet_synthesis.py [--sizes 2,4,6,7,8,9] [--timeout 150] [--memory-gb 2]
+Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,6,7,8,9]
+          [--timeout 150] [--memory-gb 2]
 """
 
 from __future__ import annotations
@@ -69,7 +71,7 @@ def measure(family: str, n: int, method: str, timeout: float, memory_gb: float) 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="2,4,6,7,8,9")
-    parser.add_argument("--families", default="ring")
+    parser.add_argument("--families", default="ring,warehouse")
     parser.add_argument("--methods", default="symbolic")
     parser.add_argument("--timeout", type=float, default=150.0)
     parser.add_argument("--memory-gb", type=float, default=2.0)
