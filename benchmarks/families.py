@@ -187,4 +187,31 @@ def warehouse(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-FLEETS = {"ring": ring, "warehouse": warehouse}  # fleet families (benchmarks/fleet_synthesis.py): N robots
+def ring_counted(n: int) -> str:
+    """The ring with the robots' identities abstracted away by hand (a counter abstraction,
+    what synthesis for identical instances could do by itself): a component per zone, empty,
+    a robot in it, or a robot moving out of it; a move needs the next zone empty. Measured to
+    see whether symmetry pays before building it into synthesis."""
+    z = 2 * n
+    lines = ["robot RingCounted {"]
+    for k in range(z):
+        start = "at" if k % 2 == 0 else "empty"
+
+        def state(name: str, body: str, marked: bool = True, start: str = start) -> str:
+            return f"            {'initial ' if name == start else ''}{'marked ' if marked else ''}state {name} {{ {body} }}"
+
+        lines.append(
+            f"    component Z{k} {{\n        incoming message go{k} with type: none\n"
+            f"        outgoing message arrived{k} with type: none\n        behaviour {{"
+        )
+        lines.append(state("empty", f"on response from arrived{(k - 1) % z} goto at"))
+        lines.append(state("at", f"on request to go{k} goto moving"))
+        lines.append(state("moving", f"on response from arrived{k} goto empty", marked=False))
+        lines.append("        }\n    }")
+    for k in range(z):
+        lines.append(f"    requirement go{k} needs Z{(k + 1) % z}.empty")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+FLEETS = {"ring": ring, "warehouse": warehouse, "ring_counted": ring_counted}  # fleet families (benchmarks/fleet_synthesis.py): N robots
