@@ -488,3 +488,33 @@ def test_conditions_kept_apart_from_the_relations_give_the_same_supervisor(monke
     assert results[0] == results[1]
     explicit = synthesize_explicit(build_network(model))
     assert explicit.reachable_states == results[0][0]
+
+
+@pytest.mark.parametrize("order", ["interaction", "model", "sorted", "reverse"])
+@pytest.mark.parametrize("reorder", [False, True])
+def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool) -> None:
+    import families
+    from robosc.synthesis.options import SynthesisOptions
+
+    models = [load((EXAMPLES / "shelf_picker.rscd").read_text()), load(families.ring(3)), load(families.philosophers(3))]
+    for model in models:
+        default = synthesize_model(model)
+        tuned = synthesize_model(model, options=SynthesisOptions(order, reorder))
+        assert tuned.reachable_states == default.reachable_states
+        assert [g.added is None for g in tuned.guards] == [g.added is None for g in default.guards]
+        # the same events allowed in the same states (an added condition may be written
+        # differently: its shortest form depends on the variable order)
+        net = default.network
+        for state in synthesize_explicit(net).details["supervisor"].controlled_states():
+            named = {a.name: loc.name for a, loc in zip(net.automata, state.locations, strict=True)}
+            named.update({f"{v.owner}.{v.name}": x for v, x in zip(net.variables, state.values, strict=True)})
+            there = tuned.state(named)  # the same state in the tuned run's network
+            for guard in default.guards:
+                assert tuned.allows(guard.event.name, there) == default.allows(guard.event, state), (guard.event, named)
+
+
+def test_an_unknown_order_is_refused() -> None:
+    from robosc.synthesis.options import SynthesisOptions
+
+    with pytest.raises(ValueError, match="unknown variable order 'random'"):
+        SynthesisOptions("random")

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from robosc.runtime.simulator import Simulator
     from robosc.sim.run import Report
     from robosc.sim.world import World
+    from robosc.synthesis.options import SynthesisOptions
     from robosc.synthesis.result import SynthesisResult
 
 __all__ = [
@@ -138,16 +139,19 @@ def format_text(text: str, path: str = "<text>") -> str | CheckResult:
     return format_syntax(parsed.syntax)
 
 
-def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
+def synthesize_model(model: Model, method: str = "symbolic", options: SynthesisOptions | None = None) -> SynthesisResult:
     """The supervisor of a checked robot model.
 
     ``result.ok`` tells whether one exists; ``result.guards`` gives, for each
     controllable event, the user's condition and the condition synthesis added;
     ``result.allows(event, state)`` answers for a concrete network state;
-    ``result.explanation`` says why synthesis failed.
+    ``result.explanation`` says why synthesis failed. ``options``
+    (:class:`robosc.synthesis.options.SynthesisOptions`) tune the symbolic method's
+    speed and memory, never its result.
     """
     from robosc.plant import build_network
     from robosc.synthesis.explicit import synthesize_explicit
+    from robosc.synthesis.options import DEFAULT
     from robosc.synthesis.symbolic import synthesize_symbolic
 
     network = build_network(model)
@@ -155,7 +159,7 @@ def synthesize_model(model: Model, method: str = "symbolic") -> SynthesisResult:
         return synthesize_explicit(network)
     if method != "symbolic":
         raise ValueError(f"unknown synthesis method '{method}' (symbolic or explicit)")
-    return synthesize_symbolic(network)
+    return synthesize_symbolic(network, options or DEFAULT)
 
 
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:

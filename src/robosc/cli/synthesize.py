@@ -153,19 +153,41 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
 @click.option("--explicit", is_flag=True, help="Use explicit-state synthesis (small models; for cross-checking).")
 @click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
 @click.option(
+    "--order",
+    type=click.Choice(["interaction", "model", "sorted", "reverse"]),
+    default="interaction",
+    show_default=True,
+    help="The initial BDD variable order (docs/synthesis-options.md): speed and memory only, never the result.",
+)
+@click.option(
+    "--reorder",
+    is_flag=True,
+    help="Let CUDD improve the variable order while it works (dynamic sifting): less memory, usually more time.",
+)
+@click.option(
     "--stats",
     is_flag=True,
     help="Also print the effort of symbolic synthesis in figures that do not depend on the machine: "
     "CUDD's peak live BDD nodes, image and preimage computations.",
 )
 def synthesize(
-    file: str, include: tuple[str, ...], as_json_output: bool, explicit: bool, show_network: bool, stats: bool
+    file: str,
+    include: tuple[str, ...],
+    as_json_output: bool,
+    explicit: bool,
+    show_network: bool,
+    order: str,
+    reorder: bool,
+    stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    result = synthesize_model(model, "explicit" if explicit else "symbolic")
-    cross_check = synthesize_model(model) if explicit and result.ok else None
+    from robosc.synthesis.options import SynthesisOptions
+
+    options = SynthesisOptions(order, reorder)
+    result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
+    cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()

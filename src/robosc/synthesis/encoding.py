@@ -20,7 +20,8 @@ from robosc.language import model as m
 from robosc.plant.network import Automaton, Network
 from robosc.record import record
 from robosc.synthesis.evaluate import ARITHMETIC, COMPARE
-from robosc.synthesis.ordering import interaction_order
+from robosc.synthesis.options import DEFAULT, SynthesisOptions
+from robosc.synthesis.ordering import initial_order
 
 BDD = Any  # dd.cudd.Function
 CACHE_SLOTS = 2**16
@@ -78,15 +79,15 @@ class Relation:
 
 
 class Encoding:
-    def __init__(self, network: Network) -> None:
+    def __init__(self, network: Network, options: SynthesisOptions = DEFAULT) -> None:
         self.network = network
         # CUDD grows its computed table as it pays off: starting at 2^16 slots instead of
         # dd's 2^18 takes 3 ms instead of 15 (a tenth of `robosc synthesize` on an example)
         # and is as fast on the benchmark families (benchmarks/bdd_cache.py)
         self.bdd = cudd.BDD(initial_cache_size=CACHE_SLOTS)
-        # The interaction order is kept: on the benchmark families CUDD's dynamic
-        # reordering (sifting) cost 1.2x to 4x the time it saved.
-        self.bdd.configure(reordering=False)
+        # By default the initial order is kept: on the benchmark families CUDD's dynamic
+        # reordering (sifting) cost 1.2x to 4x the time it saved (the option turns it on).
+        self.bdd.configure(reordering=options.reorder)
         self.fields: dict[int, Field] = {}
         self.images = self.preimages = 0  # post() and pre() calls: effort that does not depend on the machine
         order: list[str] = []
@@ -94,7 +95,7 @@ class Encoding:
             (item, item.name, item.locations)
             if isinstance(item, Automaton)
             else (item, f"{item.owner}.{item.name}", network.domains[item])
-            for item in interaction_order(network)
+            for item in initial_order(network, options.order)
         ]
         for index, (item, name, values) in enumerate(items):
             width = max(0, (len(values) - 1).bit_length())

@@ -82,3 +82,14 @@ def interaction_order(network: Network) -> list[Any]:
                     placed[neighbour] = True
                     queue.append(neighbour)
     return [items[i] for i in order]
+
+
+def initial_order(network: Network, name: str) -> list[Any]:
+    """The automata and variables in the initial order ``name`` (see robosc.synthesis.options)."""
+    items: list[Any] = [*network.automata, *network.variables]
+    if name == "model":
+        return items
+    if name == "sorted":
+        return sorted(items, key=lambda item: (getattr(item, "owner", ""), item.name))
+    found = interaction_order(network)
+    return found[::-1] if name == "reverse" else found

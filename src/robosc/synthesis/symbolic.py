@@ -20,6 +20,7 @@ from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
 from robosc.record import field, record
 from robosc.synthesis.encoding import BDD, Encoding, Relation
+from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
 from robosc.synthesis.state import NetworkState
@@ -87,8 +88,8 @@ def reach(enc: Encoding, start: BDD, relations: Iterable[Relation]) -> BDD:
             return result
 
 
-def fixpoint(network: Network) -> Fixpoint:
-    enc = Encoding(network)
+def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
+    enc = Encoding(network, options)
     relation = {e: event_relation(enc, e) for e in network.events}
     required = {e: enc.true for e in network.events}
     for requirement in network.requirements:
@@ -134,13 +135,14 @@ def fixpoint(network: Network) -> Fixpoint:
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 
-def synthesize_symbolic(network: Network) -> SynthesisResult:
-    """The maximally permissive controllable, nonblocking supervisor of ``network``."""
+def synthesize_symbolic(network: Network, options: SynthesisOptions = DEFAULT) -> SynthesisResult:
+    """The maximally permissive controllable, nonblocking supervisor of ``network``
+    (``options``: how to compute it; the result is the same whatever they are)."""
     from robosc.synthesis.explain import explain
     from robosc.synthesis.readable import readable
 
     start = time.perf_counter()
-    fp = fixpoint(network)
+    fp = fixpoint(network, options)
     enc = fp.enc
     if (fp.initial & fp.bad) != enc.false:
         explanation = explain(fp)
