@@ -94,6 +94,21 @@ FAMILIES = {
 }
 
 
+def _next_zone_free(i: int, n: int, zones: int, also: dict[int, str] | None = None) -> str:
+    """Robot i's requirement for a move, in the copied form: wherever it is, no other robot holds
+    the next zone (is in it, or moving into or out of it); ``also``: more to hold before a move
+    into a zone (its index -> a condition)."""
+    parts = []
+    for k in range(zones):
+        nxt = (k + 1) % zones
+        held = " or ".join(f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i)
+        free = f"!({held})" if held else "true"
+        if also and nxt in also:
+            free = f"{free} and {also[nxt]}"
+        parts.append(f"(R{i}.at{k} => {free})")
+    return " and ".join(parts)
+
+
 def ring(n: int) -> str:
     """N robots on a one-way ring of 2N zones, written as today's language allows (a copied
     component per robot): robot i starts in zone 2i; `go{i}` (the controller's) starts a move
@@ -115,14 +130,7 @@ def ring(n: int) -> str:
             "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
         )
     for i in range(n):
-        parts = []
-        for k in range(zones):
-            nxt = (k + 1) % zones
-            held = " or ".join(
-                f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i
-            )
-            parts.append(f"(R{i}.at{k} => !({held}))" if held else "true")
-        lines.append(f"    requirement go{i} needs " + " and ".join(parts))
+        lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones)}")
     lines.append("}")
     return "\n".join(lines) + "\n"
 
@@ -168,17 +176,7 @@ def warehouse(n: int) -> str:
             "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
         )
     for i in range(n):
-        parts = []
-        for k in range(zones):
-            nxt = (k + 1) % zones
-            held = " or ".join(
-                f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i
-            )
-            free = f"!({held})" if held else "true"
-            if nxt == door:
-                free = f"{free} and Door.open"
-            parts.append(f"(R{i}.at{k} => {free})")
-        lines.append(f"    requirement go{i} needs " + " and ".join(parts))
+        lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones, {door: 'Door.open'})}")
         others = " or ".join(f"R{j}.charging" for j in range(n) if j != i)
         lines.append(f"    requirement dock{i} needs " + (f"!({others})" if others else "true"))
     in_door = " or ".join(f"R{j}.at{door} or R{j}.moving{door - 1} or R{j}.moving{door}" for j in range(n))
