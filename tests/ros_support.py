@@ -260,6 +260,10 @@ class Ros2:
             self.executor.spin_once(timeout_sec=0.02)
         return condition()
 
+    def wait_subscribed(self, publisher: Any, timeout: float = 15) -> None:
+        """Until the node under test has subscribed to ``publisher``'s topic."""
+        assert self.spin_until(lambda: publisher.get_subscription_count() > 0, timeout), "the node did not subscribe"
+
     def record(self, kind: type, topic: str) -> list[Any]:
         got: list[Any] = []
         self.node.create_subscription(kind, topic, got.append, 50)
@@ -288,3 +292,12 @@ def ros2(tmp_path: Path) -> Iterator[Ros2]:
     finally:
         processes.stop()
         ros.close()
+
+
+def laser_scan(ranges: list[float]) -> Any:
+    """A sensor_msgs/LaserScan (ROS 2) with these ranges."""
+    from sensor_msgs.msg import LaserScan
+
+    message = LaserScan()
+    message.ranges = [float(r) for r in ranges]
+    return message

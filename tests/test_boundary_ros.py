@@ -13,17 +13,10 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ros_support import Ros1, Ros2, build_package
+from ros_support import Ros1, Ros2, build_package, laser_scan
 
 MOVE = 0.15  # the line follower's move speed
 
-
-def _scan(ranges: list[float]) -> Any:
-    from sensor_msgs.msg import LaserScan
-
-    message = LaserScan()
-    message.ranges = [float(r) for r in ranges]
-    return message
 
 
 def _health(texts: list[Any]) -> dict[str, Any]:
@@ -53,7 +46,7 @@ class LineRobot:
         self.ranges = scan if scan is not None else [5.0] * 360
         self.cmd = ros.record(Twist, "/cmd_vel")
         self.health = _latched(ros, "/health")
-        self.scan = ros.node.create_publisher(_scan([]).__class__, "/scan", 10)
+        self.scan = ros.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
         self.correction = ros.node.create_publisher(Float32, "/line/correction", 10)
         self.stop = ros.node.create_publisher(Empty, "/emergency_stop/stop", 10)
         self.on = True
@@ -62,7 +55,7 @@ class LineRobot:
 
     def publish(self) -> None:
         if self.on:
-            self.scan.publish(_scan(self.ranges))
+            self.scan.publish(laser_scan(self.ranges))
             self.correction.publish(self._float(data=10.0))
 
     def press_stop(self) -> None:
@@ -72,9 +65,6 @@ class LineRobot:
         return sum(1 for m in self.cmd if m.linear.x == MOVE)
 
 
-def _wait_subscribed(ros: Ros2, publisher: Any, timeout: float = 20) -> None:
-    assert ros.spin_until(lambda: publisher.get_subscription_count() > 0, timeout), "the node did not subscribe"
-
 
 def test_ros2_a_controller_killed_with_the_stop_held_does_not_move_after_its_restart(
     ros2: Ros2, tmp_path: Path
@@ -83,8 +73,8 @@ def test_ros2_a_controller_killed_with_the_stop_held_does_not_move_after_its_res
     params = {"rate": 20.0, "seed": 3}
     node = ros2.start(package, **params)
     robot = LineRobot(ros2)
-    _wait_subscribed(ros2, robot.scan)
-    _wait_subscribed(ros2, robot.stop)
+    ros2.wait_subscribed(robot.scan, 20)
+    ros2.wait_subscribed(robot.stop, 20)
     assert ros2.spin_until(lambda: robot.moves() > 0, 10), "the line follower never moved"
     robot.press_stop()  # ... and held: no continue is ever published
     assert ros2.spin_until(lambda: robot.cmd[-1].linear.x == 0.0, 5), "no halt after the stop"
@@ -106,7 +96,7 @@ def test_ros2_unreadable_scans_are_not_values(ros2: Ros2, tmp_path: Path) -> Non
     package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
     ros2.start(package, rate=20.0, seed=4, data_timeout=3.0)
     robot = LineRobot(ros2)
-    _wait_subscribed(ros2, robot.scan)
+    ros2.wait_subscribed(robot.scan, 20)
     assert ros2.spin_until(lambda: robot.moves() > 0, 10), "the line follower never moved"
     robot.ranges = [0.2] + [5.0] * 359  # an obstacle in front
     assert ros2.spin_until(lambda: robot.cmd[-1].linear.x == 0.0, 5)
@@ -151,12 +141,12 @@ def test_ros2_the_maze_solver_killed_mid_turn_resumes_turning(ros2: Ros2, tmp_pa
     moves = ros2.record(Twist, "/cmd_vel")
     lefts = ros2.record(Int16, "/rotate_left")
     states = ros2.record(String, "/state")
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     done = ros2.node.create_publisher(Empty, "/rotate_done", 10)
     wall = [0.3] + [5.0] * 359
     ranges = [wall]
-    ros2.node.create_timer(0.1, lambda: scan.publish(_scan(ranges[0])))
-    _wait_subscribed(ros2, scan)
+    ros2.node.create_timer(0.1, lambda: scan.publish(laser_scan(ranges[0])))
+    ros2.wait_subscribed(scan, 20)
     assert ros2.spin_until(lambda: bool(lefts), 10), "no turn at the wall"
     node.send_signal(signal.SIGKILL)  # in the middle of the turn
     node.wait(10)
@@ -203,12 +193,12 @@ def test_ros2_the_layer_forwards_only_exactly_the_allowed_event(ros2: Ros2, tmp_
     states = ros2.record(String, "/state")
     controller = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
     stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
     for publisher in (controller, stop, scan, correction):
-        _wait_subscribed(ros2, publisher)
+        ros2.wait_subscribed(publisher, 20)
     def data() -> bool:  # scans come best effort: until the node has had them
-        scan.publish(_scan([5.0] * 360))
+        scan.publish(laser_scan([5.0] * 360))
         correction.publish(Float32(data=10.0))
         return bool(states) and not json.loads(states[-1].data)["health"]["held"]
 

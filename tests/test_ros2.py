@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
-from ros_support import ROOT, Ros2, build_package
+from ros_support import ROOT, Ros2, build_package, laser_scan
 
 
 def _state(states: list[Any]) -> dict[str, Any]:
@@ -28,16 +28,6 @@ def _state(states: list[Any]) -> dict[str, Any]:
     return {**data["automata"], **data["variables"]}
 
 
-def _wait_subscribed(ros: Ros2, publisher: Any, timeout: float = 15) -> None:
-    assert ros.spin_until(lambda: publisher.get_subscription_count() > 0, timeout), "the node did not subscribe"
-
-
-def _scan(ranges: list[float]) -> Any:
-    from sensor_msgs.msg import LaserScan
-
-    message = LaserScan()
-    message.ranges = [float(r) for r in ranges]
-    return message
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros2, tmp_path: Path) -> None:
@@ -49,19 +39,19 @@ def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros
     moves = ros2.record(Twist, "/cmd_vel")
     lefts = ros2.record(Int16, "/rotate_left")
     states = ros2.record(String, "/state")
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     done = ros2.node.create_publisher(Empty, "/rotate_done", 10)
-    _wait_subscribed(ros2, scan)
+    ros2.wait_subscribed(scan)
     ros2.spin(0.5)
     assert moves == [] and lefts == [], "commanded before the first scan"
-    scan.publish(_scan([5.0] * 360))
+    scan.publish(laser_scan([5.0] * 360))
     assert ros2.spin_until(lambda: len(moves) >= 3, 15), "no movement commands"
     assert moves[-1].linear.x == 0.3
     for bad in ([], [float("nan")] * 360, [5.0]):  # empty, NaN, too short for ranges[270]
-        scan.publish(_scan(bad))
+        scan.publish(laser_scan(bad))
         ros2.spin(0.2)
     assert not lefts, "turned on malformed data"
-    scan.publish(_scan([0.3] + [5.0] * 359))
+    scan.publish(laser_scan([0.3] + [5.0] * 359))
     assert ros2.spin_until(lambda: bool(lefts), 5), "no turn at a wall"
     assert lefts[0].data == 90
     assert ros2.spin_until(lambda: _state(states).get("Platform") == "turning", 5)
@@ -69,7 +59,7 @@ def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros
     moves.clear()
     ros2.spin(0.5)
     assert not moves, "moved while turning"
-    scan.publish(_scan([5.0] * 360))
+    scan.publish(laser_scan([5.0] * 360))
     done.publish(Empty())
     assert ros2.spin_until(lambda: _state(states).get("Platform") == "ready", 5)
     assert ros2.spin_until(lambda: bool(moves), 5)
@@ -87,11 +77,11 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
     cmd = ros2.record(Twist, "/cmd_vel")
     states = ros2.record(String, "/state")
     correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
     resume = ros2.node.create_publisher(Empty, "/emergency_stop/continue", 10)
     for publisher in (correction, scan, stop, resume):
-        _wait_subscribed(ros2, publisher)
+        ros2.wait_subscribed(publisher)
 
     def speeds(seconds: float) -> list[float]:
         ros2.spin(0.3)
@@ -99,11 +89,11 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
         ros2.spin(seconds)
         return [m.linear.x for m in cmd]
 
-    scan.publish(_scan([5.0] * 360))
+    scan.publish(laser_scan([5.0] * 360))
     assert speeds(0.5) == []  # held: the correction has not come yet
 
     def data() -> bool:  # scans come best effort: until the node has had them
-        scan.publish(_scan([5.0] * 360))
+        scan.publish(laser_scan([5.0] * 360))
         correction.publish(Float32(data=10.0))
         return _state(states).get("Lidar.safety") == "safe" and _state(states).get("LineDetector") == "line_found"
 
@@ -118,7 +108,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
     resume.publish(Empty())
     assert ros2.spin_until(lambda: _state(states).get("EmergencyStop") == "in_service", 5)
     assert 0.15 in speeds(0.5)
-    scan.publish(_scan([0.2] + [5.0] * 359))
+    scan.publish(laser_scan([0.2] + [5.0] * 359))
     assert ros2.spin_until(lambda: _state(states).get("Lidar.safety") == "unsafe", 5)
     unsafe = speeds(0.5)
     assert unsafe and set(unsafe) == {0.0}, "moved while unsafe"
@@ -190,8 +180,8 @@ def _pick_station(ros: Ros2, tmp_path: Path, seed: int) -> tuple[subprocess.Pope
     states = ros.record(String, "/state")
     seen = ros.node.create_publisher(Pose, "/camera/object", 10)
     lost = ros.node.create_publisher(Empty, "/camera/lost", 10)
-    _wait_subscribed(ros, seen)
-    _wait_subscribed(ros, lost)
+    ros.wait_subscribed(seen)
+    ros.wait_subscribed(lost)
     return node, states, seen, lost
 
 
@@ -297,19 +287,19 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     robot_lefts = ros2.record(Int16, "/rotate_left")
     blocked = ros2.record(String, "/blocked")
     states = ros2.record(String, "/state")
-    to_controller = ros2.record(_scan([]).__class__, "/robosc/controller/scan")
+    to_controller = ros2.record(laser_scan([]).__class__, "/robosc/controller/scan")
     move = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
     left = ros2.node.create_publisher(Int16, "/robosc/controller/rotate_left", 10)
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     for publisher in (move, left, scan):
-        _wait_subscribed(ros2, publisher)
+        ros2.wait_subscribed(publisher)
     forward = Twist()
     forward.linear.x = 0.3
     move.publish(forward)  # before any scan: held
     assert ros2.spin_until(lambda: bool(blocked), 5), "a command before the first scan was not reported"
     assert json.loads(blocked[-1].data)["reason"].startswith("held: waiting for the first readable data")
     blocked.clear()
-    scan.publish(_scan([5.0] * 360))
+    scan.publish(laser_scan([5.0] * 360))
     assert ros2.spin_until(lambda: _state(states).get("Distance.front") == "no_wall_front", 5)
     # (no_wall_front is also where it starts: the scan has come when the node stops holding)
     assert ros2.spin_until(lambda: json.loads(states[-1].data)["health"]["held"] is False, 5), states[-1].data
@@ -325,7 +315,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     assert ros2.spin_until(lambda: bool(blocked), 5), "a forbidden command was not reported"
     assert json.loads(blocked[-1].data)["event"] == "turn_left"
     assert not robot_lefts
-    scan.publish(_scan([0.3] + [5.0] * 359))
+    scan.publish(laser_scan([0.3] + [5.0] * 359))
     assert ros2.spin_until(lambda: bool(to_controller), 5), "robot data not passed to the controller"
     assert ros2.spin_until(lambda: _state(states).get("Distance.front") == "wall_front", 5)
     before = len(robot_moves)
@@ -377,7 +367,7 @@ def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: P
     lost = ros2.node.create_publisher(Empty, "/camera/lost", 10)
     light = ros2.node.create_client(SetBool, "/robosc/controller/light/set")
     arm = ActionClient(ros2.node, Fibonacci, "/robosc/controller/arm/pick")
-    _wait_subscribed(ros2, seen)
+    ros2.wait_subscribed(seen)
     assert ros2.spin_until(lambda: light.service_is_ready() and arm.server_is_ready(), 15)
 
     def wait(future: Any, seconds: float = 10) -> Any:
@@ -432,8 +422,8 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
     generate(plan_supervisor(result), 2, "controller", package, render_page(result))
     port = free_port()
     node = ros2.start(package, rate=20.0, view_port=port)
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
-    _wait_subscribed(ros2, scan)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
+    ros2.wait_subscribed(scan)
 
     def page() -> str:
         with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as response:
@@ -442,11 +432,11 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
     html = page()
     assert "<title>MazeSolver: robosc live view</title>" in html and 'id="Platform::ready"' in html
     with urllib.request.urlopen(f"http://127.0.0.1:{port}/events", timeout=5) as stream:
-        scan.publish(_scan([0.3] + [5.0] * 359))
+        scan.publish(laser_scan([0.3] + [5.0] * 359))
         seen: list[str] = []
         end = time.monotonic() + 10
         while time.monotonic() < end and not any('"event": "turn_left"' in line for line in seen):
-            scan.publish(_scan([0.3] + [5.0] * 359))  # a LiDAR publishes all the time (best effort)
+            scan.publish(laser_scan([0.3] + [5.0] * 359))  # a LiDAR publishes all the time (best effort)
             ros2.spin(0.01)
             seen.append(stream.readline().decode())
     turn = next(line for line in seen if '"event": "turn_left"' in line)
@@ -470,12 +460,12 @@ def test_supervision_layer_fails_closed_on_a_shared_topic(ros2: Ros2, tmp_path: 
     states = ros2.record(String, "/state")
     controller = ros2.node.create_publisher(Twist, "/robosc/controller/cmd_vel", 10)
     stop = ros2.node.create_publisher(Empty, "/emergency_stop/stop", 10)
-    scan = ros2.node.create_publisher(_scan([]).__class__, "/scan", 10)
+    scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
     for publisher in (controller, stop, scan, correction):
-        _wait_subscribed(ros2, publisher)
+        ros2.wait_subscribed(publisher)
     def data() -> bool:  # scans come best effort: until the node has them
-        scan.publish(_scan([5.0] * 360))
+        scan.publish(laser_scan([5.0] * 360))
         correction.publish(Float32(data=10.0))
         return _state(states).get("LineDetector") == "line_found" and _state(states).get("Lidar.safety") == "safe"
 
@@ -529,18 +519,18 @@ def test_two_robots_in_namespaces_on_one_graph(ros2: Ros2, tmp_path: Path) -> No
         # a LiDAR driver publishes with the sensor-data profile (best effort)
         scans[robot] = ros2.node.create_publisher(LaserScan, f"/{robot}/scan", qos_profile_sensor_data)
     for robot in scans:
-        _wait_subscribed(ros2, scans[robot])
+        ros2.wait_subscribed(scans[robot])
 
     def clear() -> bool:  # best effort: until each node has a scan
         for robot in scans:
-            scans[robot].publish(_scan([5.0] * 360))
+            scans[robot].publish(laser_scan([5.0] * 360))
         return all(moves[r] for r in moves)
 
     assert ros2.spin_until(clear, 10), "a robot got no movement"
 
     def wall_for_robot1() -> bool:
-        scans["robot1"].publish(_scan([0.3] + [5.0] * 359))
-        scans["robot2"].publish(_scan([5.0] * 360))
+        scans["robot1"].publish(laser_scan([0.3] + [5.0] * 359))
+        scans["robot2"].publish(laser_scan([5.0] * 360))
         return bool(lefts["robot1"])
 
     assert ros2.spin_until(wall_for_robot1, 10), "robot1 did not turn at its wall"
@@ -585,7 +575,7 @@ def test_a_goal_while_the_server_is_absent_never_hangs_the_node(ros2: Ros2, tmp_
     node = ros2.start(package, rate=20.0, publish_state=True, server_timeout=1.0)
     states = ros2.record(String, "/state")
     seen = ros2.node.create_publisher(Pose, "/camera/object", 10)
-    _wait_subscribed(ros2, seen)
+    ros2.wait_subscribed(seen)
     seen.publish(Pose())
     assert ros2.spin_until(
         lambda: json.loads(states[-1].data)["communications"]["pick"] == "executing" if states else False, 5
