@@ -53,7 +53,7 @@ def width(err: bool = False) -> int | None:
 
 def say(text: str, err: bool = False) -> None:
     """``click.echo`` of prose, wrapped to the terminal (or COLUMNS); unwrapped when piped."""
-    from robosc.cli.table import fill
+    from robosc.wrapping import fill
 
     click.echo(fill(text, width(err)), err=err)
 

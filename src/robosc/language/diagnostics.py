@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import re
-import textwrap
 from collections.abc import Iterable, Mapping
 from enum import Enum
 
 from robosc.language.codes import Code
 from robosc.language.source import SourceFile, Span
 from robosc.record import record
+from robosc.wrapping import fill
 
 
 class Severity(str, Enum):
@@ -82,7 +82,7 @@ def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile], colum
     then the hint; with ``columns``, the message and hint wrap to it and the source line is
     shown through a window that fits."""
     span = diagnostic.span
-    lines = _wrapped(f"{span}: {diagnostic.severity.value}: {diagnostic.message}", columns, "    ")
+    lines = [fill(f"{span}: {diagnostic.severity.value}: {diagnostic.message}", columns)]
     source = sources.get(span.path)
     shown_at_most = SHOWN if columns is None else max(20, min(SHOWN, columns - 10))
     if source is not None and span.line > 0:
@@ -100,19 +100,8 @@ def render_text(diagnostic: Diagnostic, sources: Mapping[str, SourceFile], colum
             lines.append(f"    {text}")
             lines.append("    " + " " * (column - 1) + "^" + "~" * (width - 1))
     if diagnostic.hint:
-        lines += _wrapped(f"    hint: {diagnostic.hint}", columns, "          ")
+        lines.append(fill(f"    hint: {diagnostic.hint}", columns, "      "))
     return "\n".join(lines)
-
-
-def _wrapped(text: str, columns: int | None, indent: str) -> list[str]:
-    """One line per line of ``text``, each wrapped to ``columns`` (None: not wrapped); the lines
-    a wrap adds start with ``indent``."""
-    if columns is None:
-        return [text]
-    out = []
-    for line in text.split("\n"):
-        out += textwrap.wrap(line, columns, subsequent_indent=indent, break_on_hyphens=False) or [line]
-    return out
 
 
 def to_json(diagnostics: Iterable[Diagnostic]) -> str:
