@@ -9,12 +9,14 @@ import click
 
 from robosc.api import SynthesisResult, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, say, width
-from robosc.cli.table import Cell, boxed, fill
+from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
+from robosc.synthesis.options import ORDERS, SynthesisOptions
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
+from robosc.wrapping import fill
 
 
 def _explanation(explanation: Explanation) -> dict[str, Any]:
@@ -87,7 +89,7 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
     # COLUMNS, each condition and sentence stays on one line
     columns = width()
 
-    def say(text: str, indent: str = "    ") -> None:
+    def show(text: str, indent: str = "    ") -> None:  # fitted prose
         click.echo(fill(text, columns, indent))
 
     name = result.network.model.name
@@ -96,19 +98,19 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         assert explanation is not None
         failed = click.style("synthesis failed", fg="red", bold=True)
         click.echo(f"{failed} for {name}: no supervisor can keep the requirements")
-        say(f"  initial state: {explanation.initial_state}")
+        show(f"  initial state: {explanation.initial_state}")
         if explanation.path:
             click.echo("  uncontrollable events from the initial state:")
             for number, step in enumerate(explanation.path, 1):
-                say(f"    {number}. {step.event.name}  ->  {step.state}", "      ")
+                show(f"    {number}. {step.event.name}  ->  {step.state}", "      ")
         else:
             click.echo("  (the problem is already in the initial state)")
-        say(f"  why: {explanation.reason}")
+        show(f"  why: {explanation.reason}")
         for fix in explanation.fixes:
-            say(f"  fix: {fix}")
+            show(f"  fix: {fix}")
         return
     if result.method == "explicit":
-        _print_cross_check(result, cross_check, say)
+        _print_cross_check(result, cross_check, show)
         return
     rows = []
     for guard in result.guards:
@@ -122,8 +124,8 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         click.echo("why synthesis added these conditions:")
         for restriction in restrictions:
             for line in why_lines(restriction):
-                say("  " + line, "      ")
-    say(
+                show("  " + line, "      ")
+    show(
         f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled system; "
         f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
         f"{result.seconds * 1000:.1f} ms",
@@ -131,18 +133,22 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
     )
 
 
-def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None, say: Any) -> None:
+def _agree(explicit: SynthesisResult, symbolic: SynthesisResult) -> bool:
+    """Whether the two methods found the same: a supervisor or none, and as many states."""
+    return explicit.ok == symbolic.ok and explicit.reachable_states == symbolic.reachable_states
+
+
+def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None, show: Any) -> None:
     """Explicit-state synthesis computes the supervisor's states, not conditions per event: it
     is a cross-check of the symbolic method, and says so with the figures it compares."""
     plant = result.details.get("plant_states")
-    say(f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
+    show(f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
         "it computes states, not conditions per event):", "    ")
-    say(f"  uncontrolled plant: {plant} states; controlled system: {result.reachable_states} reachable states "
+    show(f"  uncontrolled plant: {plant} states; controlled system: {result.reachable_states} reachable states "
         f"({result.seconds * 1000:.1f} ms)", "    ")
     if symbolic is not None:
-        agree = symbolic.ok == result.ok and symbolic.reachable_states == result.reachable_states
-        verdict = "they agree" if agree else click.style("they DISAGREE: please report this model", fg="red", bold=True)
-        say(f"  symbolic synthesis: {symbolic.reachable_states} reachable states, a condition added to "
+        verdict = "they agree" if _agree(result, symbolic) else click.style("they DISAGREE: please report this model", fg="red", bold=True)
+        show(f"  symbolic synthesis: {symbolic.reachable_states} reachable states, a condition added to "
             f"{len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events; {verdict}", "    ")
 
 
@@ -154,7 +160,7 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
 @click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
 @click.option(
     "--order",
-    type=click.Choice(["interaction", "model", "sorted", "reverse"]),
+    type=click.Choice(list(ORDERS)),
     default="interaction",
     show_default=True,
     help="The initial BDD variable order (docs/synthesis-options.md): speed and memory only, never the result.",
@@ -183,8 +189,6 @@ def synthesize(
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    from robosc.synthesis.options import SynthesisOptions
-
     options = SynthesisOptions(order, reorder)
     result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
     cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
@@ -202,7 +206,7 @@ def synthesize(
             data["cross_check"] = {
                 "method": cross_check.method,
                 "reachable_states": cross_check.reachable_states,
-                "agree": cross_check.ok == result.ok and cross_check.reachable_states == result.reachable_states,
+                "agree": _agree(result, cross_check),
             }
         click.echo(json.dumps(data, indent=2))
     else:

@@ -127,13 +127,15 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
                 return
             record = message.get("record")
             if message.get("op") == "event" and isinstance(record, dict):
-                if record.get("heartbeat") is True:  # the node is there, though nothing happened
-                    view.alive()
-                else:
-                    view.publish(record)
+                show(record)
+
+    def show(record: dict[str, Any]) -> None:
+        if record.get("heartbeat") is True:  # the node is there, though nothing happened
+            view.alive()
+        else:
+            view.publish(record)
 
     for record in early:
-        if record.get("heartbeat") is not True:
-            view.publish(record)
+        show(record)
     threading.Thread(target=forward, name="robosc-view", daemon=True).start()
     return view

@@ -103,10 +103,8 @@ def _likeliest(found: list[Fix]) -> tuple[Fix, ...]:
     """The fixes once each, a missing transition first: where one is missing, a requirement
     that shuts a way out is its consequence, not the cause, and is left out."""
     unique = list(dict.fromkeys(found))
-    missing = [f for f in unique if f.text.startswith("add 'on ")]
-    marked = [f for f in unique if " has no way out and is not marked" in f.text]
-    others = [f for f in unique if f not in missing and f not in marked]
-    return tuple(missing + marked + ([] if missing else others))
+    kinds = ("missing", "unmarked") if any(f.kind == "missing" for f in unique) else ("missing", "unmarked", "requirement")
+    return tuple(f for kind in kinds for f in unique if f.kind == kind)
 
 
 @record
@@ -186,6 +184,7 @@ def fixes(fp: Any, state: NetworkState) -> list[Fix]:
                     f"state {location.name} of {automaton.name} has no way out and is not marked: mark it "
                     f"('marked state {location.name}') or add a transition out of it",
                     location.span,
+                    "unmarked",
                 )
             )
             continue
@@ -219,6 +218,7 @@ def fixes(fp: Any, state: NetworkState) -> list[Fix]:
                         f"{e.requirement.description} shuts {automaton.name}'s only way out of {location.name} here: "
                         f"allow {e.event.name} in this state, or keep the robot out of it",
                         origin.span if origin is not None else None,
+                        "requirement",
                     )
                 )
     return found

@@ -40,6 +40,7 @@ class Fix:
 
     text: str
     span: Span | None = None
+    kind: str = "missing"  # "missing" transition, "unmarked" dead end, or a shutting "requirement"
 
     def __str__(self) -> str:
         return f"{self.text} ({self.span})" if self.span is not None and self.span.line > 0 else self.text

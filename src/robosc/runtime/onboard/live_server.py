@@ -107,10 +107,11 @@ class LiveView(object):
         """No more data will come (the run ended): the pages say so."""
         self.ended = why
 
-    def pulse(self) -> str:
-        """What a page hears every half second: how old the data is, and whether it ended."""
+    def pulse(self) -> bytes:
+        """What a page hears every half second (a Server-Sent Event): how old the data is, and
+        whether it ended."""
         age = time.monotonic() - self.heard if self.watched else 0.0
-        return json.dumps({"age": round(age, 1), "ended": self.ended})
+        return ("event: pulse\ndata: %s\n\n" % json.dumps({"age": round(age, 1), "ended": self.ended})).encode("utf-8")
 
     def publish(self, record: Dict[str, Any]) -> None:
         """Send an event record to every open page (never blocks the caller)."""
@@ -138,14 +139,14 @@ class LiveView(object):
             handler.wfile.write(b"retry: 1000\n\n")
             if last is not None:
                 handler.wfile.write(("event: state\ndata: %s\n\n" % json.dumps(last, default=str)).encode("utf-8"))
-            handler.wfile.write(("event: pulse\ndata: %s\n\n" % self.pulse()).encode("utf-8"))
+            handler.wfile.write(self.pulse())
             handler.wfile.flush()
             due = time.monotonic() + PULSE_SECONDS
             while True:
                 try:
                     text = q.get(timeout=max(0.0, due - time.monotonic()))
                 except queue.Empty:
-                    handler.wfile.write(("event: pulse\ndata: %s\n\n" % self.pulse()).encode("utf-8"))
+                    handler.wfile.write(self.pulse())
                     handler.wfile.flush()
                     due = time.monotonic() + PULSE_SECONDS
                     continue
