@@ -515,9 +515,11 @@ class NodeCore(object):
 
     def admit(self, call: Call, request: Any) -> bool:
         """The controller calls a service or sends a goal: performed (True) only when the
-        request is exactly the trigger's data and the supervisor allows it now; else reported."""
+        request is exactly the trigger's data and the supervisor allows it now, then what
+        follows settled and persisted, as for a message; else reported."""
         found = self.events_of(request, [call.trigger], call.name)
         if found and self.supervisor.perform(call.trigger.name, request):
+            self.supervisor.settle()
             self.checkpoint()
             return True
         self.refuse(found, call.name, request)

@@ -226,8 +226,6 @@ class SupervisorNode(NodeCore):
                 if allowed:
                     call.goal += 1
                     number = call.goal
-                    self.supervisor.settle()
-                    self.checkpoint()
             if not allowed:
                 server.set_aborted(text="blocked by the supervisor")
                 return

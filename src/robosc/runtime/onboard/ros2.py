@@ -323,8 +323,6 @@ class SupervisorNode(Node, NodeCore):
                 if allowed:
                     call.goal += 1
                     number = call.goal
-                    self.supervisor.settle()
-                    self.checkpoint()
             if not allowed:
                 goal_handle.abort()
                 return call.type.Result()
