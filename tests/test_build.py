@@ -159,6 +159,15 @@ def test_ros2_package_builds_with_colcon_and_runs_from_the_install_space(ros2: R
     assert lefts[0].data == 90 and moves[0].linear.x == pytest.approx(0.3)
 
 
+def robosc_build(model: str, out: Path) -> None:
+    """`robosc build MODEL -o OUT`, as a user runs it."""
+    done = subprocess.run(
+        [sys.executable, "-m", "robosc", "build", str(ROOT / model), "-o", str(out)],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert done.returncode == 0, done.stderr
+
+
 def readme_steps(package: Path, workspace: Path) -> list[str]:
     """The commands of the package README's 'Build and run' block, with the workspace here."""
     text = (package / "README.md").read_text()
@@ -179,11 +188,7 @@ def test_the_ros1_package_readme_builds_and_launches_as_written(ros1: Ros1, tmp_
     README said nothing and catkin_make failed with "No module named 'catkin_pkg'"."""
     if not shutil.which("catkin_make", path="/usr/bin"):
         unavailable("catkin (Debian's catkin)")
-    done = subprocess.run(
-        [sys.executable, "-m", "robosc", "build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out")],
-        capture_output=True, text=True, timeout=120,
-    )
-    assert done.returncode == 0, done.stderr
+    robosc_build("examples/maze_solver.rscd", tmp_path / "out")
     package = tmp_path / "out/ros1/maze_solver_robosc"  # the folder has the package's name
     lint = run(["catkin_lint", "-W2", "--strict", str(package)], package)
     assert "0 problems" in lint, lint
@@ -206,11 +211,7 @@ def test_the_ros2_package_readme_builds_as_written(ros2: Ros2, tmp_path: Path) -
     no wheels here: 'ros2 launch' is not run, see README's limitations)."""
     if not COLCON.exists():
         unavailable("colcon (pip install colcon-common-extensions)")
-    done = subprocess.run(
-        [sys.executable, "-m", "robosc", "build", str(ROOT / "examples/maze_solver.rscd"), "-o", str(tmp_path / "out")],
-        capture_output=True, text=True, timeout=120,
-    )
-    assert done.returncode == 0, done.stderr
+    robosc_build("examples/maze_solver.rscd", tmp_path / "out")
     package = tmp_path / "out/ros2/maze_solver_robosc"
     workspace = tmp_path / "ros2_ws"
     steps = readme_steps(package, workspace)
