@@ -212,4 +212,97 @@ def ring_counted(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-FLEETS = {"ring": ring, "warehouse": warehouse, "ring_counted": ring_counted}  # fleet families (benchmarks/fleet_synthesis.py): N robots
+def _zone_free(zones: int, also: dict[int, str] | None = None) -> str:
+    """The move requirement of instance ``r``, written once: wherever r is, no robot holds the
+    next zone (r itself cannot: it is in the zone before)."""
+    parts = []
+    for k in range(zones):
+        nxt = (k + 1) % zones
+        free = f"!any(q in bot: q.at{nxt} or q.moving{k} or q.moving{nxt})"
+        if also and nxt in also:
+            free = f"{free} and {also[nxt]}"
+        parts.append(f"(r.at{k} => {free})")
+    return " and ".join(parts)
+
+
+def _robot_states(zones: int, door: int | None = None, charger: bool = False) -> list[str]:
+    states = []
+    for k in range(zones):
+        marked = "" if k == door else "marked "
+        dock = " on request to dock goto charging" if charger and k == 0 else ""
+        states.append(f"            {marked}state at{k} {{ on request to go goto moving{k}{dock} }}")
+        states.append(f"            state moving{k} {{ on response from arrived goto at{(k + 1) % zones} }}")
+    if charger:
+        states.append("            state charging { on response from charged goto at0 }")
+    return states
+
+
+def ring_instances(n: int) -> str:
+    """:func:`ring` written with instances: one robot component for all, bot1 .. botN (bot{i+1}
+    is R{i} and starts in zone 2i), and the move requirement written once for every robot."""
+    zones = 2 * n
+    starts = ", ".join(f"at{2 * i}" for i in range(n))
+    return "\n".join(
+        [
+            "robot Ring {",
+            f"    component bot[{n}] initial {starts} {{",
+            "        incoming message go with type: none",
+            "        outgoing message arrived with type: none",
+            "        behaviour {",
+            *_robot_states(zones),
+            "        }",
+            "    }",
+            "    for r in bot {",
+            f"        requirement r.go needs {_zone_free(zones)}",
+            "    }",
+            "}",
+        ]
+    ) + "\n"
+
+
+def warehouse_instances(n: int) -> str:
+    """:func:`warehouse` written with instances (bot{i+1} is R{i})."""
+    zones = 2 * n + 2
+    door = 1
+    starts = ", ".join(f"at{2 * i + 2}" for i in range(n))
+    return "\n".join(
+        [
+            "robot Warehouse {",
+            "    component Door {",
+            "        incoming message open_door with type: none",
+            "        incoming message close_door with type: none",
+            "        outgoing message door_opened with type: none",
+            "        outgoing message door_closed with type: none",
+            "        behaviour {",
+            "            initial marked state closed { on request to open_door goto opening }",
+            "            state opening { on response from door_opened goto open }",
+            "            marked state open { on request to close_door goto closing }",
+            "            state closing { on response from door_closed goto closed }",
+            "        }",
+            "    }",
+            f"    component bot[{n}] initial {starts} {{",
+            "        incoming message go with type: none",
+            "        incoming message dock with type: none",
+            "        outgoing message arrived with type: none",
+            "        outgoing message charged with type: none",
+            "        behaviour {",
+            *_robot_states(zones, door, charger=True),
+            "        }",
+            "    }",
+            "    for r in bot {",
+            f"        requirement r.go needs {_zone_free(zones, {door: 'Door.open'})}",
+            "        requirement r.dock needs !any(q in bot: q.charging)",
+            "    }",
+            f"    requirement close_door needs !any(q in bot: q.at{door} or q.moving{door - 1} or q.moving{door})",
+            "}",
+        ]
+    ) + "\n"
+
+
+FLEETS = {
+    "ring": ring,
+    "warehouse": warehouse,
+    "ring_counted": ring_counted,
+    "ring_instances": ring_instances,
+    "warehouse_instances": warehouse_instances,
+}  # fleet families (benchmarks/fleet_synthesis.py): N robots

@@ -58,11 +58,37 @@ def shape(node: Any) -> Any:
     return (node.type, str(node), node.start_pos, node.line, node.column, node.end_line, node.end_column, node.end_pos)
 
 
+SOFT = set(grammar_compile.SOFT_KEYWORDS)
+
+
+def lark_parse(parser: Any, text: str, start: str) -> Any:
+    """Lark's parse, with the soft keywords read as the spec says: a word is the keyword only
+    where the parser would not take a name (Lark's lexer would reserve it everywhere)."""
+    interactive = parser.parse_interactive(text, start=start)
+    state = interactive.parser_state
+    token = None
+    for token in interactive.lexer_thread.lex(state):
+        if token.type in SOFT:
+            accepted = interactive.accepts()
+            keep = "NAME" not in accepted and token.type in accepted
+            token = token if keep else lark.Token.new_borrow_pos("NAME", str(token), token)
+        try:
+            interactive.feed_token(token)
+        except lark.UnexpectedToken as exc:
+            exc.interactive_parser = interactive
+            raise
+    try:
+        return interactive.feed_eof(token)
+    except lark.UnexpectedToken as exc:
+        exc.interactive_parser = interactive
+        raise
+
+
 def by_lark(text: str, start: str = "start") -> tuple[Any, ...]:
     parser, comments = LARK_FILE if start == "start" else LARK_PIECES
     comments.clear()
     try:
-        tree = parser.parse(text, start=start)
+        tree = lark_parse(parser, text, start)
     except lark.UnexpectedToken as exc:
         return ("token", shape(exc.token), sorted(exc.expected), sorted(exc.interactive_parser.accepts()))
     except lark.UnexpectedCharacters as exc:

@@ -20,6 +20,7 @@ def component(body: str, comms: str = "outgoing message m with type: boolean") -
 
 
 OK_STATES = "initial marked state a {}"
+BOT = "component bot[{count} {{ incoming message go with type: none behaviour {{ initial marked state a {{ on request to go }} }} }}"
 
 CASES = {
     "rule-1": [
@@ -248,6 +249,22 @@ CASES = {
         (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
         (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
     ],
+    "instances": [
+        (robot(BOT.format(count="0]")), "0 instances of 'bot': a component has from 1 to 1000 instances"),
+        (robot(BOT.format(count="3] initial a, a")), "2 initial states for 3 instances of 'bot'"),
+        (robot(BOT.format(count="2]"), "requirement act needs all(q in S: q.idle)"), "'all' ranges over nothing: 'S'"),
+        (robot(BOT.format(count="2]"), "for r in S { requirement r.go needs true }"), "'for' ranges over nothing"),
+        (robot(BOT.format(count="2]"), "requirement bot.go needs true"), "'bot' is a group of instances"),
+        (robot(BOT.format(count="2]"), "for r in bot { requirement r.go needs r }"), "'r' stands for an instance"),
+        (
+            robot(BOT.format(count="2]"), "for r in bot { for r in bot { requirement r.go needs true } }"),
+            "'r' already names an instance here",
+        ),
+        (robot(BOT.format(count="2]"), component(OK_STATES).replace("component C", "component bot2")), "'bot2' names both"),
+        (robot(BOT.format(count="2]"), component(OK_STATES).replace("component C", "component Bot")), "group 'bot' has"),
+        (robot(BOT.format(count='2] namespace "9x"')), "'9x' is not a valid ROS namespace"),
+        (robot(BOT.format(count="2]").replace("message go with", 'message go with identifier: "/go",')), "absolute"),
+    ],
     "constant": [
         (
             robot(component(OK_STATES, "incoming message d with type: double"), "provide d with 1.0 / 0.0"),
@@ -267,6 +284,10 @@ CASES = {
 }
 
 VALID = {
+    "instances": robot(
+        BOT.format(count='3] namespace "/fleet" initial a, a, a'),
+        "for r in bot { requirement r.go needs count(q in bot: q != r and q.a) <= 2 and any(q in bot: q = r) }",
+    ),
     "rule-1": robot(component(OK_STATES), "datatype enum E from double to { value > 1.0 -> big default -> small }"),
     "rule-2": robot(component("initial marked state a { transition goto b } state b { transition goto a }")),
     "rule-3": robot(component("initial state a { transition goto b } marked state b { transition goto a }")),

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
 from robosc.language.checks import run_checks
+from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, render_text, sort_key
 from robosc.language.loader import InputError, LibraryFinder, read_source
 from robosc.language.model import Model
@@ -98,7 +99,8 @@ def _check(source: SourceFile, search_paths: Sequence[str | Path], reparser: Rep
     finder = LibraryFinder(_search_paths(source.path, search_paths), sources)
     resolved = resolve(parsed.syntax, source.path, finder)
     diagnostics = list(resolved.diagnostics)
-    diagnostics += [d for d in run_checks(resolved.model) if d not in diagnostics]
+    if not any(d.code is Code.LIMIT for d in diagnostics):  # else the model is a part, maybe a huge one
+        diagnostics += [d for d in run_checks(resolved.model) if d not in diagnostics]
     diagnostics.sort(key=sort_key)
     ok = not any(d.is_error for d in diagnostics)
     return CheckResult(resolved.model if ok else None, tuple(diagnostics), sources, resolved.references)

@@ -36,20 +36,42 @@ def _type_name(t: Any) -> str:
     return str(getattr(t, "name", None) or getattr(getattr(t, "kind", None), "value", None) or t)
 
 
+def _owner(component: m.Component, model: m.Model) -> str:
+    """How a hover names a declaration's component: ``Door``, or ``bot`` (bot1 .. bot4)."""
+    if component.group is None:
+        return f"`{component.name}`"
+    instances = model.groups[component.group]
+    return f"each of `{instances[0].name}` .. `{instances[-1].name}`" if len(instances) > 1 else f"`{component.name}`"
+
+
+MOST_INSTANCES = 4  # a fleet's hover shows this many instances' conditions
+
+
 def describe(model: m.Model, notes: dict[str, list[str]] | None, name: str) -> str | None:
     """Markdown about every declaration called ``name``; None if there is none. ``notes``:
-    what synthesis found for each communication (:func:`guard_notes`), None while it runs."""
+    what synthesis found for each communication (:func:`guard_notes`), None while it runs.
+    A declaration in a component with instances is described once, for all of them."""
     parts: list[str] = []
+    shown: set[tuple[str, object]] = set()  # (kind, span) of what was described: once per declaration
+    noted: dict[object, int] = {}  # a communication's span -> of how many instances the conditions are shown
     for component in model.components:
+        owner = _owner(component, model)
         for comm in component.communications:
-            if comm.name != name:
+            local = comm.name.rsplit(".", 1)[-1]
+            if name not in (comm.name, local):
                 continue
+            if ("comm", comm.span) in shown:  # another instance's: its conditions, for a few
+                noted[comm.span] = noted.get(comm.span, 1) + 1
+                if notes is not None and noted[comm.span] <= MOST_INSTANCES and not notes.get(NO_SUPERVISOR):
+                    parts += notes.get(comm.name, [])
+                continue
+            shown.add(("comm", comm.span))
             kind = type(comm).__name__.lower()
             if isinstance(comm, m.Message):
-                head = f"**{comm.direction.value} message `{comm.name}`** of `{component.name}`: `{_type_name(comm.type)}`"
+                head = f"**{comm.direction.value} message `{local}`** of {owner}: `{_type_name(comm.type)}`"
             else:
-                head = f"**{kind} `{comm.name}`** of `{component.name}`"
-            parts.append(head + f", ROS name `{comm.ros_name}`")
+                head = f"**{kind} `{local}`** of {owner}"
+            parts.append(head + f", ROS name `{comm.ros_name}`" + (" (and so on)" if component.group else ""))
             if notes is None:
                 parts.append("_synthesis is running…_")
             else:
@@ -58,12 +80,24 @@ def describe(model: m.Model, notes: dict[str, list[str]] | None, name: str) -> s
         if automaton is None:
             continue
         for state in automaton.states:
-            if state.name == name:
+            if state.name == name and ("state", state.span) not in shown:
+                shown.add(("state", state.span))
                 flags = [w for w, on in (("initial", state.initial), ("marked", state.marked)) if on]
-                parts.append(f"**state `{component.name}.{state.name}`** {' '.join(flags)}".rstrip())
+                label = f"`{component.name}.{state.name}`" if component.group is None else f"`{state.name}` of {owner}"
+                parts.append(f"**state {label}** {' '.join(flags)}".rstrip())
         for variable in automaton.variables:
-            if variable.name == name:
-                parts.append(f"**variable `{component.name}.{variable.name}`**: `{_type_name(variable.type)}`")
+            if variable.name == name and ("variable", variable.span) not in shown:
+                shown.add(("variable", variable.span))
+                label = f"`{component.name}.{variable.name}`" if component.group is None else f"`{variable.name}` of {owner}"
+                parts.append(f"**variable {label}**: `{_type_name(variable.type)}`")
+    groups = model.groups
+    if name in groups:
+        instances = groups[name]
+        parts.append(
+            f"**group `{name}`** of {len(instances)} instance{'s' if len(instances) != 1 else ''}: "
+            + ", ".join(f"`{c.name}` in `{c.namespace}`" for c in instances[:MOST_INSTANCES])
+            + (f" .. `{instances[-1].name}`" if len(instances) > MOST_INSTANCES else "")
+        )
     return "\n\n".join(parts) if parts else None
 
 

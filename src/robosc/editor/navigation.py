@@ -49,6 +49,16 @@ def declarations(model: m.Model | None) -> list[Any]:
     return found
 
 
+def same(found: Any, target: Any) -> bool:
+    """Whether ``found`` is ``target``'s declaration: itself, or the same declaration in another
+    instance of its component (``bot2.go`` for ``bot1.go``: one text, one rename)."""
+    return found is target or (
+        type(found) is type(target)
+        and not isinstance(target, m.Component)
+        and getattr(found, "span", None) == getattr(target, "span", 0)
+    )
+
+
 class Index:
     """The references of one check of one file, and the texts of the files it read."""
 
@@ -74,11 +84,14 @@ class Index:
 
     def name_span(self, target: Any) -> Span | None:
         """Where a declaration writes its name: the first word of its text that is the name
-        (a keyword only with its ``^``)."""
+        (a keyword only with its ``^``; an instance's communication ``bot1.go`` writes ``go``)."""
         span, name = target.span, getattr(target, "name", None)
         text = self.texts.get(span.path)
         if text is None or not isinstance(name, str):
             return None
+        if isinstance(target, m.Component) and target.group is not None:
+            return None  # an instance is named by its group and number: nowhere written whole
+        name = name.rsplit(".", 1)[-1]
         for match in NAME.finditer(text, span.start, span.end):
             word = match.group()
             if word.lstrip("^") == name and (word.startswith("^") or name not in KEYWORDS):
@@ -116,7 +129,7 @@ class Index:
         target = self.target_at(position)
         if target is None:
             return []
-        found = [self.location(span) for span, t in self.references if t is target]
+        found = [self.location(span) for span, t in self.references if same(t, target)]
         if declaration:
             found.insert(0, self.location(self.name_span(target) or target.span))
         return found
@@ -128,11 +141,15 @@ class Index:
         if found is None:
             raise RenameError("no name to rename here")
         target, _ = found
+        if isinstance(target, m.Component) and target.group is not None:
+            raise RenameError(
+                f"'{target.name}' is instance {target.index} of '{target.group}': rename the group where it is declared"
+            )
         if WHOLE_NAME.match(new_name) is None:
             raise RenameError(f"'{new_name}' is not a name: a letter or '_', then letters, digits or '_'")
         text = escape_name(new_name.lstrip("^"))
         declared = self.name_span(target)
-        spans = [span for span, t in self.references if t is target]
+        spans = [span for span, t in self.references if same(t, target)]
         if declared is not None:
             spans.insert(0, declared)
         edits: dict[str, list[tuple[Span, str]]] = {}
@@ -146,10 +163,14 @@ class Index:
     def _keep_ros_name(self, target: Any, declared: Span | None) -> tuple[Span, str] | None:
         """A communication without an identifier is on the ROS graph under its name: renamed,
         it keeps that ROS name by gaining ``identifier: "<old name>",`` after its ``with``."""
-        if not isinstance(target, (m.Message, m.Service, m.Action)) or target.identifier is not None or declared is None:
+        if not isinstance(target, (m.Message, m.Service, m.Action)) or declared is None:
             return None
         text = self.texts[declared.path]
+        if target.identifier is not None and (
+            "." not in target.name or re.search(r"\bidentifier:", text[declared.end : target.span.end])
+        ):
+            return None  # its ROS name is written (an instance's has its namespace whether written or not)
         found = re.compile(r"\bwith\b[ \t]*").search(text, declared.end, target.span.end)
         if found is None:
             return None
-        return Span.of(declared.path, text, found.end()), f'identifier: "{target.name}", '
+        return Span.of(declared.path, text, found.end()), f'identifier: "{target.name.rsplit(".", 1)[-1]}", '

@@ -19,6 +19,23 @@ def outline(tree: s.FileSyntax, lines: list[str]) -> list[lsp.DocumentSymbol]:
             name=name, kind=kind, range=whole, selection_range=selected, detail=detail or None, children=list(children)
         )
 
+    def counted(d: s.LocalComponentSyntax | s.ImportedComponentSyntax, detail: str) -> str:
+        count = d.instances.count if d.instances is not None else None
+        return f"{detail}, {count.value} instances" if count is not None else detail
+
+    def statements(definitions: tuple[s.Definition, ...] | tuple[s.Definition | s.ForEachSyntax, ...]) -> list:  # type: ignore[type-arg]
+        found = []
+        for d in definitions:
+            if isinstance(d, s.RequirementSyntax):
+                names = ", ".join(n.text for n in d.events.names)
+                found.append(symbol(f"requirement {names} {d.kind}", Kind.Property, d.span, d.events.span))
+            elif isinstance(d, s.ProvideSyntax):
+                found.append(symbol(f"provide {d.communication.text}", Kind.Constant, d.span, d.communication.span))
+            elif isinstance(d, s.ForEachSyntax):
+                title = f"for {d.binder.text} in {d.group.text}"
+                found.append(symbol(title, Kind.Namespace, d.span, d.binder.span, "", statements(d.items)))
+        return found
+
     out = []
     for d in tree.definitions:
         if isinstance(d, s.LocalComponentSyntax):
@@ -33,15 +50,12 @@ def outline(tree: s.FileSyntax, lines: list[str]) -> list[lsp.DocumentSymbol]:
                 else:
                     kind = type(item).__name__.removesuffix("Syntax").lower()
                     children.append(symbol(item.name.text, Kind.Event, item.span, item.name.span, kind))
-            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, "component", children))
+            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, counted(d, "component"), children))
         elif isinstance(d, s.ImportedComponentSyntax):
             detail = f"from {d.library.text}.{d.component.text}"
-            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, detail))
-        elif isinstance(d, s.RequirementSyntax):
-            names = ", ".join(n.text for n in d.events.names)
-            out.append(symbol(f"requirement {names} {d.kind}", Kind.Property, d.span, d.events.span))
-        elif isinstance(d, s.ProvideSyntax):
-            out.append(symbol(f"provide {d.communication.text}", Kind.Constant, d.span, d.communication.span))
+            out.append(symbol(d.name.text, Kind.Class, d.span, d.name.span, counted(d, detail)))
+        elif isinstance(d, (s.RequirementSyntax, s.ProvideSyntax, s.ForEachSyntax)):
+            out += statements((d,))
         elif isinstance(d, s.ObjectTypeSyntax | s.EnumTypeSyntax):
             shape = Kind.Struct if isinstance(d, s.ObjectTypeSyntax) else Kind.Enum
             out.append(symbol(d.name.text, shape, d.span, d.name.span, "datatype"))
@@ -55,6 +69,8 @@ def folds(tree: s.FileSyntax) -> list[lsp.FoldingRange]:
     spans: list[Span] = []
     for d in tree.definitions:
         spans.append(d.span)
+        if isinstance(d, s.ForEachSyntax):
+            spans += [i.span for i in d.items]
         if isinstance(d, s.LocalComponentSyntax):
             for item in d.items:
                 if isinstance(item, s.BehaviourSyntax):

@@ -58,6 +58,11 @@ class Code(str, Enum):
     # what the build turns into names and text outside the model
     PACKAGE_NAME = "package-name", "a robot's name begins with a letter (it names a ROS package, node and files)"
     TEXT = "text", "a string holds no NUL or other control character but tab, newline and carriage return"
+    INSTANCES = (
+        "instances",
+        "instances of a component: a count from 1 to 1000, one initial state per instance, names and ROS "
+        "names that no two instances share; quantifiers and 'for' over a group of instances",
+    )
     # warnings that catch modelling mistakes
     IMPLICIT_START = "implicit-start", "warning: a guard or requirement reads an enum variable with no initial value"
     UNCONTROLLABLE_REQUIREMENT = (

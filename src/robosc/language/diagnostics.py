@@ -125,3 +125,16 @@ def to_json(diagnostics: Iterable[Diagnostic]) -> str:
         ],
         indent=2,
     )
+
+
+def once_per_place(diagnostics: list[Diagnostic]) -> tuple[Diagnostic, ...]:
+    """The diagnostics, each place and code reported once: a mistake in a component with
+    instances, or in a 'for' block, is found once per instance, and said once."""
+    seen = set()
+    kept = []
+    for diagnostic in diagnostics:
+        key = (diagnostic.span, diagnostic.code, diagnostic.severity)
+        if key not in seen:
+            seen.add(key)
+            kept.append(diagnostic)
+    return tuple(kept)

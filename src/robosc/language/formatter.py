@@ -21,8 +21,22 @@ INDENT = "    "
 # ---- expressions and types (one line each) ----------------------------------
 
 
-def name(n: s.Name) -> str:
+def name(n: s.Name | s.QualifiedName) -> str:
+    if isinstance(n, s.QualifiedName):
+        return f"{escape_name(n.instance.text)}.{escape_name(n.name.text)}"
     return escape_name(n.text)
+
+
+def instances(i: s.Instances | None) -> str:
+    """``[4] namespace "/fleet" initial a, b, c, d`` after a component's name."""
+    if i is None:
+        return ""
+    text = f"[{i.count.value}]" if i.count is not None else ""
+    if i.namespace is not None:
+        text += f" namespace {i.namespace.raw}"
+    if i.initial:
+        text += " initial " + ", ".join(name(n) for n in i.initial)
+    return text
 
 
 def expr(e: s.Expr) -> str:
@@ -40,6 +54,10 @@ def expr(e: s.Expr) -> str:
         return e.raw
     if isinstance(e, s.BoolLit):
         return "true" if e.value else "false"
+    if isinstance(e, s.Quantifier):
+        return f"{e.kind.text}({name(e.binder)} in {name(e.group)}: {expr(e.body)})"
+    if isinstance(e, s.Call):
+        return f"{e.kind.text}({', '.join(expr(a) for a in e.args)})"
     head = "value" if e.head is None else name(e.head)
     return head + "".join(f"[{st.index}]" if isinstance(st, s.IndexStep) else f".{name(st.name)}" for st in e.steps)
 
@@ -105,7 +123,9 @@ def one_line(item: object) -> str:
     if isinstance(item, s.InterfaceSyntax):
         return f"interface {name(item.name)} use {name(item.ros_type)} from {name(item.package)}"
     if isinstance(item, s.ImportedComponentSyntax):
-        return f"component {name(item.name)} from {name(item.library)} import {name(item.component)}"
+        count = f"[{item.instances.count.value}]" if item.instances and item.instances.count else ""
+        options = instances(item.instances).removeprefix(count)
+        return f"component {name(item.name)}{count} from {name(item.library)} import {name(item.component)}{options}"
     if isinstance(item, s.RequirementSyntax):
         if item.kind == "needs":
             return f"requirement {events(item.events)} needs {expr(item.condition)}"
@@ -170,7 +190,10 @@ class _Printer:
         body: list[tuple[object, str]]
         if isinstance(node, s.LocalComponentSyntax):
             body = [(i, "block" if isinstance(i, s.BehaviourSyntax) else "communication") for i in node.items]
-            self.block(f"component {name(node.name)}", node.span, depth, body)
+            self.block(f"component {name(node.name)}{instances(node.instances)}", node.span, depth, body)
+        elif isinstance(node, s.ForEachSyntax):
+            body = [(i, "block" if isinstance(i, s.ForEachSyntax) else type(i).__name__) for i in node.items]
+            self.block(f"for {name(node.binder)} in {name(node.group)}", node.span, depth, body)
         elif isinstance(node, s.BehaviourSyntax):
             groups = {s.VariableSyntax: "variable", s.StateSyntax: "block"}
             body = [(i, groups.get(type(i), "transition")) for i in node.items]
@@ -191,7 +214,7 @@ class _Printer:
 
 
 def _group(definition: s.Definition) -> str:
-    if isinstance(definition, (s.LocalComponentSyntax, s.ObjectTypeSyntax, s.EnumTypeSyntax)):
+    if isinstance(definition, (s.LocalComponentSyntax, s.ObjectTypeSyntax, s.EnumTypeSyntax, s.ForEachSyntax)):
         return "block"
     return type(definition).__name__
 

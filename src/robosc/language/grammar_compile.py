@@ -20,6 +20,11 @@ TABLES = Path(__file__).with_name("grammar_tables.py")
 # the tables, by the start symbols they parse from: a whole file, and (for the language
 # server's reparsing) one definition of a robot or a library alone
 STARTS = {"FILE": ["start"], "PIECES": ["robot_def", "library_def"]}
+# Words that are keywords only where a name cannot stand: lexed as NAME, and read as the
+# keyword by the parser where it has no action on a name (robosc.language.lalr.parse), so
+# that models of the original tool naming something so still load. Lark's basic lexer would
+# reserve them; the tests run Lark with the same rule.
+SOFT_KEYWORDS = ("FOR", "IN", "NAMESPACE")
 
 
 def compile_tables(grammar: str, starts: list[str]) -> dict[str, Any]:
@@ -36,7 +41,8 @@ def compile_tables(grammar: str, starts: list[str]) -> dict[str, Any]:
         assert isinstance(callback, UnlessCallback), f"unexpected lexer callback on {name}"
         folded = callback.scanner.terminals
         assert all(not t.pattern.flags for t in folded), "keywords with regex flags are not supported"
-        keywords[name] = {t.pattern.value: t.name for t in folded}
+        keywords[name] = {t.pattern.value: t.name for t in folded if t.name not in SOFT_KEYWORDS}
+    soft = {t.pattern.value: t.name for t in parser.terminals if t.name in SOFT_KEYWORDS}
     table = parser.parser.parser.parser.parse_table
     rules = list(parser.rules)
     index = {id(rule): number for number, rule in enumerate(rules)}
@@ -85,6 +91,7 @@ def compile_tables(grammar: str, starts: list[str]) -> dict[str, Any]:
     return {
         "terminals": tuple((t.name, t.pattern.to_regexp()) for t in scanner.terminals),
         "keywords": keywords,
+        "soft": soft,
         "ignore": tuple(sorted(lexer.ignore_types)),
         "newline": tuple(sorted(lexer.newline_types)),
         "literals": {t.name: t.pattern.value for t in sorted(parser.terminals, key=lambda t: t.name) if t.pattern.type == "str"},

@@ -125,27 +125,31 @@ class UnexpectedToken(UnexpectedInput):
     def accepts(self) -> set[str]:
         """The terminals after which parsing could go on, found by trying each (Lark's
         ``InteractiveParser.accepts``: reductions can fail where the state has an action)."""
-        states, rules = self._tables.states, self._tables.rules
-        accepted = set()
-        for terminal in states[self._stack[-1]]:
-            if not terminal.isupper():
-                continue
-            stack = list(self._stack)
-            while True:
-                action = states[stack[-1]].get(terminal)
-                if action is None:
-                    break
-                if action >= 0:
-                    accepted.add(terminal)
-                    break
-                origin, size = rules[~action][:2]
-                if size:
-                    del stack[-size:]
-                stack.append(states[stack[-1]][origin])
-                if terminal == "$END" and stack[-1] == self._end:
-                    accepted.add(terminal)
-                    break
-        return accepted
+        states = self._tables.states
+        return {
+            terminal
+            for terminal in states[self._stack[-1]]
+            if terminal.isupper() and takes(self._tables, self._stack, terminal, self._end)
+        }
+
+
+def takes(tables: Tables, stack: list[int], terminal: str, end: int = -1) -> bool:
+    """Whether the parser in ``stack`` would take ``terminal`` (shift it, after the reductions
+    it asks for; ``$END``: reach the ``end`` state), tried on a copy of the stack."""
+    states, rules = tables.states, tables.rules
+    stack = list(stack)
+    while True:
+        action = states[stack[-1]].get(terminal)
+        if action is None:
+            return False
+        if action >= 0:
+            return True
+        origin, size = rules[~action][:2]
+        if size:
+            del stack[-size:]
+        stack.append(states[stack[-1]][origin])
+        if terminal == "$END" and stack[-1] == end:
+            return True
 
 
 class Tables:
@@ -154,6 +158,7 @@ class Tables:
     def __init__(self, data: dict[str, Any]) -> None:
         self.pattern = re.compile("|".join(f"(?P<{name}>{regexp})" for name, regexp in data["terminals"]))
         self.keywords: dict[str, dict[str, str]] = data["keywords"]
+        self.soft: dict[str, str] = data["soft"]  # soft keywords: their text -> their terminal
         self.ignore = frozenset(data["ignore"])
         self.newline = frozenset(data["newline"])
         self.literals: dict[str, str] = data["literals"]
@@ -202,6 +207,8 @@ def parse(tables: Tables, text: str, start: str, comments: list[Token] | None = 
     value_stack: list[Any] = []
     end_state = tables.end[start]
 
+    soft = tables.soft
+
     def feed(token: Token, is_end: bool) -> Any:
         while True:
             actions = states[state_stack[-1]]
@@ -227,6 +234,10 @@ def parse(tables: Tables, text: str, start: str, comments: list[Token] | None = 
 
     last = None
     for last in tokens(tables, text, comments):
+        if last.type == "NAME" and last.value in soft:
+            keyword = soft[last.value]  # a soft keyword: the keyword where no name can stand
+            if not takes(tables, state_stack, "NAME") and takes(tables, state_stack, keyword):
+                last.type = keyword
         feed(last, False)
     if last is None:
         end = Token("$END", "", 0, 1, 1, 1, 1, 0)

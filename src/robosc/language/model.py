@@ -220,7 +220,18 @@ class Invalid:
     type: DataType = ERROR
 
 
-Expr = Literal | EnumLiteral | StateRef | VariableRef | DataRef | Unary | Binary | Invalid
+@record(eq=False)
+class Count:
+    """``count(q in group: ...)``: how many of ``terms`` (one per instance of ``group``, in
+    instance order) hold; an integer from 0 to their number."""
+
+    group: str
+    terms: tuple[Expr, ...]
+    type: DataType
+    span: Span = field(repr=False)
+
+
+Expr = Literal | EnumLiteral | StateRef | VariableRef | DataRef | Unary | Binary | Count | Invalid
 
 
 def walk(expr: Expr) -> Iterator[Expr]:
@@ -233,6 +244,8 @@ def walk(expr: Expr) -> Iterator[Expr]:
             stack += [node.right, node.left]
         elif isinstance(node, Unary):
             stack.append(node.operand)
+        elif isinstance(node, Count):
+            stack += reversed(node.terms)
 
 
 # ---- communication ----------------------------------------------------------
@@ -394,7 +407,9 @@ class Automaton:
 
 @record(eq=False)
 class Component:
-    """A component (a ROS node). ``library`` is set for an imported one."""
+    """A component (a ROS node). ``library`` is set for an imported one. An instance
+    (``component bot[4] ...`` makes bot1 .. bot4) names its ``group`` and its ``index`` (from 1);
+    its communications are named ``bot1.go`` and live in its ROS ``namespace``."""
 
     name: str
     communications: tuple[Communication, ...]
@@ -402,6 +417,9 @@ class Component:
     span: Span = field(repr=False)
     library: str | None = None
     library_component: str | None = None
+    group: str | None = None
+    index: int | None = None
+    namespace: str | None = None
 
     @property
     def automaton(self) -> Automaton | None:
@@ -475,6 +493,15 @@ class Model:
 
     def component(self, name: str) -> Component | None:
         return next((c for c in self.components if c.name == name), None)
+
+    @property
+    def groups(self) -> dict[str, tuple[Component, ...]]:
+        """Each group of instances (``component bot[4] ...``) and its instances, in order."""
+        found: dict[str, list[Component]] = {}
+        for component in self.components:
+            if component.group is not None:
+                found.setdefault(component.group, []).append(component)
+        return {name: tuple(instances) for name, instances in found.items()}
 
     def communication(self, name: str) -> Communication | None:
         return next((c for c in self.communications if c.name == name), None)

@@ -69,4 +69,6 @@ def render(e: m.Expr) -> str:
         return f"{escape_name(e.variable.owner)}.{escape_name(e.variable.name)}{steps(e.steps)}"
     if isinstance(e, m.DataRef):
         return "value" + steps(e.steps)
+    if isinstance(e, m.Count):
+        return f"count({', '.join(render(term) for term in e.terms)})"
     return "<invalid>"

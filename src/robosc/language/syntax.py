@@ -26,6 +26,22 @@ class Name:
 
 
 @record
+class QualifiedName:
+    """``instance.name``: a communication of one instance (``bot1.go``)."""
+
+    instance: Name
+    name: Name
+    span: Span = _span()
+
+    @property
+    def text(self) -> str:
+        return f"{self.instance.text}.{self.name.text}"
+
+
+Ref = Name | QualifiedName
+
+
+@record
 class Comment:
     text: str
     span: Span = _span()
@@ -108,7 +124,27 @@ class Paren:
     span: Span = _span()
 
 
-Expr = IntLit | DoubleLit | StrLit | BoolLit | Access | Unary | Binary | Paren
+@record
+class Quantifier:
+    """``all(q in bot: body)``, ``any(...)`` or ``count(...)``: over every instance of ``group``."""
+
+    kind: Name  # all, any or count (checked when resolving)
+    binder: Name
+    group: Name
+    body: Expr
+    span: Span = _span()
+
+
+@record
+class Call:
+    """``count(a, b, c)`` (how many hold), ``all(...)`` or ``any(...)`` over the conditions written."""
+
+    kind: Name
+    args: tuple[Expr, ...]
+    span: Span = _span()
+
+
+Expr = IntLit | DoubleLit | StrLit | BoolLit | Access | Unary | Binary | Paren | Quantifier | Call
 
 # ---- data types ----------------------------------------------------------
 
@@ -231,7 +267,7 @@ class AssignmentSyntax:
 class ResultTransitionSyntax:
     result: str  # request, response, feedback, error, cancel
     preposition: str  # from, to
-    communication: Name
+    communication: Ref
     assignments: tuple[AssignmentSyntax, ...]
     target: Name | None
     span: Span = _span()
@@ -266,10 +302,22 @@ class BehaviourSyntax:
 
 
 @record
+class Instances:
+    """``[count]`` after a component's name, with its options: where the instances' ROS names
+    go (``namespace "/fleet"``) and where each starts (``initial s1, s2``)."""
+
+    count: IntLit | None
+    namespace: StrLit | None = None
+    initial: tuple[Name, ...] = ()
+    span: Span = _span()
+
+
+@record
 class LocalComponentSyntax:
     name: Name
     items: tuple[BehaviourSyntax | CommunicationSyntax, ...]
     span: Span = _span()
+    instances: Instances | None = None
 
 
 @record
@@ -278,6 +326,7 @@ class ImportedComponentSyntax:
     library: Name
     component: Name
     span: Span = _span()
+    instances: Instances | None = None
 
 
 ComponentSyntax = LocalComponentSyntax | ImportedComponentSyntax
@@ -287,7 +336,7 @@ ComponentSyntax = LocalComponentSyntax | ImportedComponentSyntax
 
 @record
 class EventsSyntax:
-    names: tuple[Name, ...]
+    names: tuple[Ref, ...]
     is_set: bool
     span: Span = _span()
 
@@ -315,14 +364,25 @@ class ObjectValueSyntax:
 
 @record
 class ProvideSyntax:
-    communication: Name
+    communication: Ref
     data: Expr | ObjectValueSyntax
     condition: Expr | None
     span: Span = _span()
 
 
+@record
+class ForEachSyntax:
+    """``for r in bot { ... }``: the statements once for each instance of ``group``."""
+
+    binder: Name
+    group: Name
+    items: tuple[RequirementSyntax | ProvideSyntax | ForEachSyntax, ...]
+    span: Span = _span()
+
+
 Definition = (
-    LocalComponentSyntax
+    ForEachSyntax
+    | LocalComponentSyntax
     | ImportedComponentSyntax
     | RequirementSyntax
     | ProvideSyntax

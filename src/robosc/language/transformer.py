@@ -146,11 +146,41 @@ class SyntaxBuilder:
         return s.Name(name, self._span(meta))
 
     # -- components ------------------------------------------------------------
+    @staticmethod
+    def _instances(ch: list[Any]) -> s.Instances | None:
+        """The ``[count]`` and the options among a component's children (taken out of ``ch``)."""
+        count = next((c for c in ch if isinstance(c, s.IntLit)), None)
+        options = next((c for c in ch if isinstance(c, s.Instances)), None)
+        ch[:] = [c for c in ch if not isinstance(c, (s.IntLit, s.Instances))]
+        if count is None and options is None:
+            return None
+        if options is None:
+            return s.Instances(count, span=count.span if count else s.NO_SPAN)
+        return s.Instances(count, options.namespace, options.initial, options.span)
+
     def local_component(self, meta: Meta, ch: list[Any]) -> s.LocalComponentSyntax:
-        return s.LocalComponentSyntax(ch[0], tuple(ch[1:]), self._span(meta))
+        instances = self._instances(ch)
+        return s.LocalComponentSyntax(ch[0], tuple(ch[1:]), self._span(meta), instances)
 
     def imported_component(self, meta: Meta, ch: list[Any]) -> s.ImportedComponentSyntax:
-        return s.ImportedComponentSyntax(ch[0], ch[1], ch[2], self._span(meta))
+        instances = self._instances(ch)
+        return s.ImportedComponentSyntax(ch[0], ch[1], ch[2], self._span(meta), instances)
+
+    def instances(self, meta: Meta, ch: list[Token]) -> s.IntLit:
+        return s.IntLit(self._int(ch[0]), self._span(meta))
+
+    def options(self, meta: Meta, ch: list[Any]) -> s.Instances:
+        namespace = next((c for c in ch if isinstance(c, s.StrLit)), None)
+        initial = next((c for c in ch if isinstance(c, tuple)), ())
+        return s.Instances(None, namespace, initial, self._span(meta))
+
+    def namespace(self, meta: Meta, ch: list[Any]) -> s.StrLit:
+        token = ch[1]
+        literal = self.string_literal(meta, [token])
+        return s.StrLit(literal.raw, literal.value, self.token_span(token))
+
+    def initial_states(self, meta: Meta, ch: list[Any]) -> tuple[s.Name, ...]:
+        return tuple(c for c in ch if isinstance(c, s.Name))
 
     def behaviour(self, meta: Meta, ch: list[Any]) -> s.BehaviourSyntax:
         return s.BehaviourSyntax(tuple(ch), self._span(meta))
@@ -299,6 +329,12 @@ class SyntaxBuilder:
     def event_set(self, meta: Meta, ch: list[s.Name]) -> s.EventsSyntax:
         return s.EventsSyntax(tuple(ch), True, self._span(meta))
 
+    def qualified_name(self, meta: Meta, ch: list[s.Name]) -> s.QualifiedName:
+        return s.QualifiedName(ch[0], ch[1], self._span(meta))
+
+    def for_each(self, meta: Meta, ch: list[Any]) -> s.ForEachSyntax:
+        return s.ForEachSyntax(ch[1], ch[3], tuple(ch[4:]), self._span(meta))
+
     def provide(self, meta: Meta, ch: list[Any]) -> s.ProvideSyntax:
         return s.ProvideSyntax(ch[0], ch[1], ch[2] if len(ch) > 2 else None, self._span(meta))
 
@@ -319,6 +355,16 @@ class SyntaxBuilder:
 
     def paren(self, meta: Meta, ch: list[Any]) -> s.Expr:
         return self._expr(s.Paren(ch[0], self._span(meta)), ch[0])
+
+    def quantifier(self, meta: Meta, ch: list[Any]) -> s.Expr:
+        kind, binder, _, group, body = ch
+        name = s.Name(str(kind), self.token_span(kind))
+        return self._expr(s.Quantifier(name, binder, group, body, self._span(meta)), body)
+
+    def call(self, meta: Meta, ch: list[Any]) -> s.Expr:
+        kind, *args = ch
+        name = s.Name(str(kind), self.token_span(kind))
+        return self._expr(s.Call(name, tuple(args), self._span(meta)), *args)
 
     def int_literal(self, meta: Meta, ch: list[Token]) -> s.IntLit:
         return s.IntLit(self._int(ch[0]), self._span(meta))

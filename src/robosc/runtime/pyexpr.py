@@ -132,6 +132,8 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
         if names.checked and numeric and expr.op in _ARITHMETIC and any(isinstance(n, m.DataRef) for n in m.walk(expr)):
             return f"num({text})"  # inf - inf: NaN is not a value
         return text
+    if isinstance(expr, m.Count):  # booleans add up as 0 and 1
+        return f"sum(({', '.join(_operand(t, names, owner) for t in expr.terms)},))"
     raise TypeError(f"cannot compile {type(expr).__name__}")
 
 

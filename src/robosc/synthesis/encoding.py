@@ -286,6 +286,16 @@ class Encoding:
                         continue  # division by zero: no value (the edge cannot be taken)
                     pairs.append((apply(a, b), when_a & when_b))
             return _merge(pairs)
+        if isinstance(e, m.Count):  # how many terms hold: counted term by term
+            counts = {0: self.true}
+            for term in e.terms:
+                holds = self.boolean(term)
+                step: dict[int, BDD] = {}
+                for n, where in counts.items():
+                    step[n] = step.get(n, self.false) | (where & ~holds)
+                    step[n + 1] = step.get(n + 1, self.false) | (where & holds)
+                counts = {n: where for n, where in step.items() if where != self.false}
+            return counts
         if _is_boolean(e):
             holds = self.boolean(e)
             return {True: holds, False: ~holds}

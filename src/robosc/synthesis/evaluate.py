@@ -51,4 +51,6 @@ def evaluate(e: m.Expr, locations: frozenset[m.State] | set[m.State], values: Ma
         if e.op == "/" and right == 0:
             raise Undefined("division by zero")
         return COMPARE[e.op](left, right) if e.op in COMPARE else ARITHMETIC[e.op](left, right)
+    if isinstance(e, m.Count):
+        return sum(1 for term in e.terms if evaluate(term, locations, values))
     raise Undefined(f"cannot evaluate {type(e).__name__}")

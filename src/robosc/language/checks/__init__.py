@@ -16,6 +16,7 @@ from robosc.language.checks import (
     enum_values,
     implicit_start,
     initial_state,
+    instances,
     integer_range,
     interface_links,
     limits,
@@ -35,7 +36,7 @@ from robosc.language.checks import (
     unique_names,
     variable_ranges,
 )
-from robosc.language.diagnostics import Diagnostic
+from robosc.language.diagnostics import Diagnostic, once_per_place
 from robosc.language.model import Model
 
 Check = Callable[[Model], Iterator[Diagnostic]]
@@ -65,8 +66,11 @@ CHECKS: tuple[Check, ...] = (
     uncontrollable_requirements.check,  # warning: a requirement on what the robot sends
     limits.check,  # sizes synthesis cannot represent
     package_name.check,  # a robot's name names a ROS package: a letter first
+    instances.check,  # instance and group names clash with no other
 )
 
 
 def run_checks(model: Model) -> list[Diagnostic]:
-    return [diagnostic for check in CHECKS for diagnostic in check(model)]
+    """Every rule's diagnostics; a mistake inside a component with instances is found in each
+    instance, and said once."""
+    return list(once_per_place([diagnostic for check in CHECKS for diagnostic in check(model)]))

@@ -46,7 +46,7 @@ def duplicates(kind: str, items: Iterable[Named], where: str = "") -> Iterator[D
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    yield from duplicates("component", model.components)
+    yield from duplicates("component", [c for c in model.components if c.group is None])  # instances: their check
     yield from duplicates("communication", model.communications)
     yield from duplicates("data type", model.data_types)
     yield from duplicates("interface", model.interfaces)

@@ -12,9 +12,10 @@ from typing import Any, Protocol
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language.codes import Code
-from robosc.language.diagnostics import Diagnostic
+from robosc.language.diagnostics import Diagnostic, once_per_place
 from robosc.language.resolver.components import BehaviourResolver, declare
 from robosc.language.resolver.expressions import ExpressionResolver
+from robosc.language.resolver.instances import Instance, instances
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.statements import StatementResolver
@@ -82,6 +83,7 @@ class _Entry:
     library: LibraryUnit | None = None
     library_name: str | None = None
     library_component: str | None = None
+    instance: Instance | None = None
 
 
 class _Resolver:
@@ -92,25 +94,35 @@ class _Resolver:
         self.scope = scope_of(file, self.reporter)
         self.entries: dict[str, _Entry] = {}
         self.order: list[_Entry] = []
+        self.groups: dict[str, list[str]] = {}  # bot -> [bot1, .., botN]
         self._communications: dict[str, m.Communication] | None = None
 
     # -- phase 1 -------------------------------------------------------------------
     def declare_components(self) -> None:
         for definition in self.file.definitions:
-            if isinstance(definition, s.LocalComponentSyntax):
-                tables = declare(definition, definition.name.text, self.scope)
-                self._add(definition.name.text, _Entry(definition, tables, self.scope, definition.span))
-            elif isinstance(definition, s.ImportedComponentSyntax):
-                self._add(definition.name.text, self._import(definition))
+            if not isinstance(definition, (s.LocalComponentSyntax, s.ImportedComponentSyntax)):
+                continue
+            declared = instances(definition, self.reporter)
+            if definition.instances is not None and definition.instances.count is not None:
+                self.groups.setdefault(definition.name.text, [i.name for i in declared])
+            unit = None
+            if isinstance(definition, s.ImportedComponentSyntax) and declared:
+                unit = self.libraries.find(definition.library, self.reporter)
+            for instance in declared:
+                if isinstance(definition, s.LocalComponentSyntax):
+                    tables = declare(definition, instance.name, self.scope, instance, self.reporter)
+                    entry = _Entry(definition, tables, self.scope, definition.span, instance=instance)
+                else:
+                    entry = self._import(definition, unit, instance)
+                self._add(instance.name, entry)
 
     def _add(self, name: str, entry: _Entry) -> None:
         self.order.append(entry)
         self.entries.setdefault(name, entry)
 
-    def _import(self, syntax: s.ImportedComponentSyntax) -> _Entry:
-        local = syntax.name.text
-        failed = _Entry(None, ComponentTables(local), self.scope, syntax.span)
-        unit = self.libraries.find(syntax.library, self.reporter)
+    def _import(self, syntax: s.ImportedComponentSyntax, unit: LibraryUnit | None, instance: Instance) -> _Entry:
+        local = instance.name
+        failed = _Entry(None, ComponentTables(local), self.scope, syntax.span, instance=instance)
         if unit is None:
             return failed
         found = unit.component(syntax.component.text)
@@ -130,7 +142,7 @@ class _Resolver:
                 Code.UNKNOWN_NAME,
             )
             return failed
-        tables = declare(found, local, unit.scope)
+        tables = declare(found, local, unit.scope, instance, self.reporter)
         for communication in tables.communications:
             for data_type in m.data_types_of(communication):
                 self.scope.add_imported(data_type)
@@ -138,7 +150,9 @@ class _Resolver:
                 self.scope.interfaces.append(communication.interface)
         for variable in tables.variables.values():
             self.scope.add_imported(variable.type)
-        return _Entry(found, tables, unit.scope, syntax.span, unit, syntax.library.text, syntax.component.text)
+        return _Entry(
+            found, tables, unit.scope, syntax.span, unit, syntax.library.text, syntax.component.text, instance
+        )
 
     # -- lookups -------------------------------------------------------------------
     def _robot_component(self, name: str) -> ComponentTables | str | None:
@@ -174,7 +188,7 @@ class _Resolver:
     # -- phase 2 -------------------------------------------------------------------
     def components(self) -> tuple[m.Component, ...]:
         robot_expressions = ExpressionResolver(
-            self.reporter, self.scope.enum_values, self._robot_component, self._component_names
+            self.reporter, self.scope.enum_values, self._robot_component, self._component_names, self.groups
         )
         built = []
         for entry in self.order:
@@ -194,6 +208,7 @@ class _Resolver:
                 automata = tuple(
                     behaviour.automaton(item) for item in entry.syntax.items if isinstance(item, s.BehaviourSyntax)
                 )
+            instance = entry.instance
             built.append(
                 m.Component(
                     entry.tables.name,
@@ -202,24 +217,23 @@ class _Resolver:
                     entry.span,
                     entry.library_name,
                     entry.library_component,
+                    instance.group if instance else None,
+                    instance.index if instance else None,
+                    instance.namespace if instance else None,
                 )
             )
         return tuple(built)
 
     def statements(self) -> tuple[tuple[m.Requirement, ...], tuple[m.Provide, ...]]:
         expressions = ExpressionResolver(
-            self.reporter, self.scope.enum_values, self._robot_component, self._component_names
+            self.reporter, self.scope.enum_values, self._robot_component, self._component_names, self.groups
         )
         resolver = StatementResolver(expressions, self.reporter, self._communication, self._communication_names)
-        requirements = []
-        provides = []
+        requirements: list[m.Requirement] = []
+        provides: list[m.Provide] = []
         for definition in self.file.definitions:
-            if isinstance(definition, s.RequirementSyntax):
-                requirements.append(resolver.requirement(definition))
-            elif isinstance(definition, s.ProvideSyntax):
-                provide = resolver.provide(definition)
-                if provide is not None:
-                    provides.append(provide)
+            if isinstance(definition, (s.RequirementSyntax, s.ProvideSyntax, s.ForEachSyntax)):
+                resolver.statement(definition, requirements, provides)
         return tuple(requirements), tuple(provides)
 
 
@@ -240,7 +254,7 @@ def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> Resolv
         provides,
         file.name.span,
     )
-    unique = tuple(dict.fromkeys(resolver.reporter.diagnostics))
+    unique = once_per_place(resolver.reporter.diagnostics)
     # a component named in an expression was referred to by its tables: name the component
     built = {id(entry.tables): component for entry, component in zip(resolver.order, components, strict=True)}
     references = tuple((span, built.get(id(target), target)) for span, target in resolver.reporter.references)

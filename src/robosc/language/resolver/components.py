@@ -10,13 +10,19 @@ from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
 from robosc.language.resolver.expressions import ExprContext, ExpressionResolver
+from robosc.language.resolver.instances import Instance, ros_identifier
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.scope import FileScope
 from robosc.language.resolver.tables import ComponentTables
 
 
-def declare(syntax: s.LocalComponentSyntax, owner: str, scope: FileScope) -> ComponentTables:
-    """Phase 1: a component's communications, states and variables (no transitions yet)."""
+def declare(
+    syntax: s.LocalComponentSyntax, owner: str, scope: FileScope, instance: Instance | None = None, reporter: Reporter | None = None
+) -> ComponentTables:
+    """Phase 1: a component's communications, states and variables (no transitions yet);
+    for an ``instance``, under its names (``reporter``: the robot's, for what the instance adds)."""
+    instance = instance or Instance(owner, None, None, None, None)
+    reporter = reporter or scope.reporter
     tables = ComponentTables(owner)
     constants = ExpressionResolver(scope.reporter, scope.enum_values, lambda _: None, list)
     for item in syntax.items:
@@ -29,16 +35,31 @@ def declare(syntax: s.LocalComponentSyntax, owner: str, scope: FileScope) -> Com
                     variable = _variable(entry, owner, scope, constants)
                     tables.variables.setdefault(variable.name, variable)
         else:
-            tables.communications.append(_communication(item, owner, scope))
+            communication = _communication(item, owner, scope, *ros_identifier(item, instance, reporter))
+            tables.communications.append(communication)
+            tables.local.setdefault(item.name.text, communication)
+    if instance.initial is not None:
+        _start_in(tables, instance.initial, reporter)
     return tables
 
 
-def _communication(syntax: s.CommunicationSyntax, owner: str, scope: FileScope) -> m.Communication:
-    identifier = syntax.identifier.value if syntax.identifier is not None else None
+def _start_in(tables: ComponentTables, initial: s.Name, reporter: Reporter) -> None:
+    """An instance starts in ``initial`` instead of its automaton's initial state."""
+    if initial.text not in tables.states:
+        reporter.unknown(initial.span, "state", initial.text, tables.states, f" in '{tables.name}'")
+        return
+    reporter.refer(initial.span, tables.states[initial.text])
+    for name, state in tables.states.items():
+        tables.states[name] = m.State(state.name, state.owner, name == initial.text, state.marked, state.span)
+
+
+def _communication(
+    syntax: s.CommunicationSyntax, owner: str, scope: FileScope, name: str, identifier: str | None
+) -> m.Communication:
     interface = scope.lookup_interface(syntax.links) if syntax.links is not None else None
     if isinstance(syntax, s.MessageSyntax):
         return m.Message(
-            syntax.name.text,
+            name,
             owner,
             m.Direction(syntax.direction),
             identifier,
@@ -49,9 +70,9 @@ def _communication(syntax: s.CommunicationSyntax, owner: str, scope: FileScope) 
     request = scope.data_type(syntax.request)
     response = scope.data_type(syntax.response)
     if isinstance(syntax, s.ServiceSyntax):
-        return m.Service(syntax.name.text, owner, identifier, request, response, interface, syntax.span)
+        return m.Service(name, owner, identifier, request, response, interface, syntax.span)
     feedback = scope.data_type(syntax.feedback)
-    return m.Action(syntax.name.text, owner, identifier, request, response, feedback, interface, syntax.span)
+    return m.Action(name, owner, identifier, request, response, feedback, interface, syntax.span)
 
 
 def _variable(syntax: s.VariableSyntax, owner: str, scope: FileScope, constants: ExpressionResolver) -> m.Variable:
@@ -186,13 +207,13 @@ class BehaviourResolver:
             self.reporter.refer(name.span, state)
         return state
 
-    def _communication(self, name: s.Name) -> m.Communication | None:
-        own = next((c for c in self.tables.communications if c.name == name.text), None)
+    def _communication(self, name: s.Ref) -> m.Communication | None:
+        own = self.tables.local.get(name.text) if isinstance(name, s.Name) else None
         found = own or self.communications(name.text)
         if found is None:
             self.reporter.unknown(name.span, "communication", name.text, self.communication_names())
         else:
-            self.reporter.refer(name.span, found)
+            self.reporter.refer(name.name.span if isinstance(name, s.QualifiedName) else name.span, found)
         return found
 
     def _assignment(self, syntax: s.AssignmentSyntax, context: ExprContext) -> m.Assignment:

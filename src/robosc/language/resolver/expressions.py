@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 
 from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
 from robosc.language.diagnostics import closest
+from robosc.language.resolver import instances as inst
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
@@ -35,11 +37,111 @@ class ExpressionResolver:
         enum_values: dict[str, tuple[m.EnumType, m.EnumValue]],
         components: ComponentLookup,
         component_names: Callable[[], list[str]],
+        groups: dict[str, list[str]] | None = None,
     ) -> None:
         self.reporter = reporter
         self.enum_values = enum_values
         self.components = components
         self.component_names = component_names
+        self.groups = groups if groups is not None else {}  # bot -> [bot1, .., botN]
+        self.bound: dict[str, str] = {}  # instance variables (``q`` in ``all(q in bot: ...)``) -> instance
+
+    # -- instances -------------------------------------------------------------------
+    def group(self, name: s.Name, binder: s.Name, what: str) -> list[str] | None:
+        """The instances a quantifier or a ``for`` ranges over, or None after saying why it cannot."""
+        found = self.groups.get(name.text)
+        if binder.text in self.bound or self.components(binder.text) is not None:
+            self.reporter.error(
+                binder.span,
+                f"'{binder.text}' already names "
+                + ("an instance here" if binder.text in self.bound else "a component")
+                + f": give the instances of {what} another name",
+                Code.INSTANCES,
+            )
+            return None
+        if found is not None:
+            return found
+        if name.text in self.bound or self.components(name.text) is not None:
+            single = self.bound.get(name.text, name.text)
+            self.reporter.error(
+                name.span,
+                f"{what} ranges over nothing: '{name.text}' is one component ({single}), not a group of instances",
+                Code.INSTANCES,
+                f"a group is declared with a count, as in 'component {name.text}[4] ...'",
+            )
+            return None
+        self.reporter.unknown(name.span, "group of instances", name.text, self.groups)
+        return None
+
+    @contextmanager
+    def binding(self, binder: str, instance: str) -> Iterator[None]:
+        self.bound[binder] = instance
+        try:
+            yield
+        finally:
+            del self.bound[binder]
+
+    def expanding(self, span: Span) -> bool:
+        """Whether expansion may go on: at most :data:`~instances.MAX_EXPANSION` expression nodes."""
+        if self.reporter.made <= inst.MAX_EXPANSION:
+            return True
+        if self.reporter.made < 2 * inst.MAX_EXPANSION + 1:  # said once
+            self.reporter.made = 2 * inst.MAX_EXPANSION + 1
+            self.reporter.error(
+                span,
+                f"the quantifiers and 'for' blocks here expand to more than {inst.MAX_EXPANSION:,} expression nodes",
+                Code.LIMIT,
+                "nest fewer quantifiers, or write the condition over fewer instances",
+            )
+        return False
+
+    def _quantifier(self, syntax: s.Quantifier | s.Call, context: ExprContext) -> m.Expr:
+        kind = syntax.kind.text
+        if kind not in inst.QUANTIFIERS:
+            self.reporter.error(
+                syntax.kind.span,
+                f"unknown function '{kind}'",
+                Code.UNKNOWN_NAME,
+                "RoboSC has all(q in group: condition), any(q in group: condition) and count(q in group: condition), "
+                "and all, any and count of conditions written out: count(A.x, B.y) <= 1",
+            )
+            return m.Invalid(syntax.span)
+        terms = []
+        group = ""
+        if isinstance(syntax, s.Call):
+            for arg in syntax.args:
+                terms.append(self.expr(arg, context))
+        else:
+            group = syntax.group.text
+            names = self.group(syntax.group, syntax.binder, f"'{kind}'")
+            if names is None:
+                return m.Invalid(syntax.span)
+            for name in names:
+                if not self.expanding(syntax.span):
+                    return m.Invalid(syntax.span)
+                with self.binding(syntax.binder.text, name):
+                    terms.append(self.expr(syntax.body, context))
+        for term in terms:
+            if t.is_error(term.type):
+                return m.Invalid(syntax.span)
+            if not t.is_boolean(term.type):
+                self.reporter.error(term.span, f"the conditions of '{kind}' are boolean, not {term.type}", Code.TYPES)
+                return m.Invalid(syntax.span)
+        terms = [inst.fold(term) for term in terms]
+        if kind == "count":
+            return m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
+        return inst.join("and" if kind == "all" else "or", terms, syntax.span)
+
+    def _same_instance(self, syntax: s.Binary) -> m.Expr | None:
+        """``q = r`` / ``q != r`` between instance variables: decided here, or None when ``syntax``
+        compares something else."""
+        sides = [syntax.left, syntax.right]
+        if syntax.op not in ("=", "!=") or not all(
+            isinstance(e, s.Access) and e.head is not None and not e.steps and e.head.text in self.bound for e in sides
+        ):
+            return None
+        left, right = (self.bound[e.head.text] for e in sides)  # type: ignore[union-attr]
+        return inst.literal((left == right) == (syntax.op == "="), syntax.span)
 
     # -- entry points --------------------------------------------------------------
     def condition(self, syntax: s.Expr, context: ExprContext, what: str) -> m.Expr:
@@ -50,6 +152,7 @@ class ExpressionResolver:
         return expr
 
     def expr(self, syntax: s.Expr, context: ExprContext) -> m.Expr:
+        self.reporter.made += 1
         if isinstance(syntax, s.Paren):
             return self.expr(syntax.inner, context)
         if isinstance(syntax, s.IntLit):
@@ -64,7 +167,12 @@ class ExpressionResolver:
             operand = self.expr(syntax.operand, context)
             result = t.unary_type(syntax.op, operand.type)
             return m.Unary(syntax.op, operand, self._checked(result, syntax.span), syntax.span)
+        if isinstance(syntax, (s.Quantifier, s.Call)):
+            return self._quantifier(syntax, context)
         if isinstance(syntax, s.Binary):
+            same = self._same_instance(syntax) if self.bound else None
+            if same is not None:
+                return same
             left = self.expr(syntax.left, context)
             right = self.expr(syntax.right, context)
             result = t.binary_type(syntax.op, left.type, right.type)
@@ -84,6 +192,19 @@ class ExpressionResolver:
         name = syntax.head.text
         steps = syntax.steps
         own = context.component
+        if name in self.bound:
+            if not steps:
+                self.reporter.error(
+                    syntax.span,
+                    f"'{name}' stands for an instance, which is not a value",
+                    Code.INSTANCES,
+                    f"name one of its states ('{name}.<state>') or compare it with another instance ('{name} != r')",
+                )
+                return m.Invalid(syntax.span)
+            instance = self.bound[name]
+            tables = self.components(instance)
+            if tables is not None:
+                return self._component_member(instance, tables, syntax, refer_head=False)
         if own is not None and name in own.variables:
             self.reporter.refer(syntax.head.span, own.variables[name])
             return self._variable(own.variables[name], steps, syntax.span)
@@ -153,7 +274,9 @@ class ExpressionResolver:
         steps, data_type = self.steps(context.value_type, syntax.steps)
         return m.DataRef(steps, data_type, syntax.span)
 
-    def _component_member(self, name: str, component: ComponentTables | str, syntax: s.Access) -> m.Expr:
+    def _component_member(
+        self, name: str, component: ComponentTables | str, syntax: s.Access, refer_head: bool = True
+    ) -> m.Expr:
         if isinstance(component, str):
             if not component:  # its import failed, which is reported already
                 return m.Invalid(syntax.span)
@@ -168,7 +291,7 @@ class ExpressionResolver:
             return m.Invalid(syntax.span)
         member = syntax.steps[0].name
         rest = syntax.steps[1:]
-        if syntax.head is not None:  # the component named (its tables, the component once built)
+        if syntax.head is not None and refer_head:  # the component named (its tables, the component once built)
             self.reporter.refer(syntax.head.span, component)
         if member.text in component.states:
             if rest:

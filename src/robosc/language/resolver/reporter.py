@@ -15,6 +15,7 @@ class Reporter:
         self.diagnostics: list[Diagnostic] = []
         # each name that resolved, and what it names (a model object with a span): for editors
         self.references: list[tuple[Span, Any]] = []
+        self.made = 0  # expression nodes resolved: quantifiers and 'for' blocks stop at a bound
 
     def refer(self, span: Span, target: Any) -> None:
         self.references.append((span, target))

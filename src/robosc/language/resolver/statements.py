@@ -27,12 +27,53 @@ class StatementResolver:
         self.communications = communications
         self.communication_names = communication_names
 
-    def _communication(self, name: s.Name) -> m.Communication | None:
-        found = self.communications(name.text)
-        if found is None:
-            self.reporter.unknown(name.span, "communication", name.text, self.communication_names())
+    def statement(
+        self,
+        syntax: s.RequirementSyntax | s.ProvideSyntax | s.ForEachSyntax,
+        requirements: list[m.Requirement],
+        provides: list[m.Provide],
+    ) -> None:
+        """Resolve one robot-level statement into ``requirements`` and ``provides``."""
+        if isinstance(syntax, s.RequirementSyntax):
+            requirements.append(self.requirement(syntax))
+        elif isinstance(syntax, s.ProvideSyntax):
+            provide = self.provide(syntax)
+            if provide is not None:
+                provides.append(provide)
         else:
-            self.reporter.refer(name.span, found)
+            self.for_each(syntax, requirements, provides)
+
+    def for_each(self, syntax: s.ForEachSyntax, requirements: list[m.Requirement], provides: list[m.Provide]) -> None:
+        """``for r in bot { ... }``: the statements once for each instance, in order."""
+        names = self.expressions.group(syntax.group, syntax.binder, "'for'")
+        for name in names or ():
+            if not self.expressions.expanding(syntax.span):
+                return
+            with self.expressions.binding(syntax.binder.text, name):
+                for item in syntax.items:
+                    self.statement(item, requirements, provides)
+
+    def _communication(self, name: s.Ref) -> m.Communication | None:
+        text = name.text
+        refer = name.span
+        if isinstance(name, s.QualifiedName):
+            refer = name.name.span
+            instance = self.expressions.bound.get(name.instance.text, name.instance.text)
+            text = f"{instance}.{name.name.text}"
+            if name.instance.text in self.expressions.groups:
+                self.reporter.error(
+                    name.instance.span,
+                    f"'{name.instance.text}' is a group of instances: name one (as in "
+                    f"'{name.instance.text}1.{name.name.text}'), or write the statement in "
+                    f"'for r in {name.instance.text} {{ ... }}' with 'r.{name.name.text}'",
+                    Code.INSTANCES,
+                )
+                return None
+        found = self.communications(text)
+        if found is None:
+            self.reporter.unknown(name.span, "communication", text, self.communication_names())
+        else:
+            self.reporter.refer(refer, found)
         return found
 
     def requirement(self, syntax: s.RequirementSyntax) -> m.Requirement:

@@ -12,3 +12,5 @@ class ComponentTables:
     states: dict[str, m.State] = field(default_factory=dict)
     variables: dict[str, m.Variable] = field(default_factory=dict)
     communications: list[m.Communication] = field(default_factory=list)
+    # its communications by the names its own transitions use (``go`` for ``bot1.go``)
+    local: dict[str, m.Communication] = field(default_factory=dict)

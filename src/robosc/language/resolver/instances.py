@@ -1,0 +1,181 @@
+"""Instances of a component (``component bot[4] ...``), and the expressions that the
+quantifiers and ``for`` blocks over them expand into.
+
+A group ``bot`` of N instances becomes N components ``bot1`` .. ``botN``; each instance's
+communications are named ``bot1.go`` in the model and live under the instance's ROS
+namespace. ``all``/``any`` over a group become a conjunction / disjunction of one term per
+instance, ``count`` an :class:`~robosc.language.model.Count`; comparing two instance
+variables (``q != r``) is decided while expanding, and the constants it leaves are folded
+away, so the expanded model reads as if written out by hand.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from robosc.language import model as m
+from robosc.language import syntax as s
+from robosc.language.checks.topic_names import problem as ros_name_problem
+from robosc.language.codes import Code
+from robosc.language.resolver.reporter import Reporter
+from robosc.language.source import Span
+from robosc.record import record
+
+MAX_INSTANCES = 1000  # instances of one component
+MAX_EXPANSION = 500_000  # expression nodes that quantifiers and 'for' blocks may make in one file
+QUANTIFIERS = ("all", "any", "count")
+
+
+@record
+class Instance:
+    """One component to declare: an instance of a group, or a plain component (``group`` None)."""
+
+    name: str
+    group: str | None
+    index: int | None
+    namespace: str | None
+    initial: s.Name | None  # the state it starts in instead of the automaton's initial one
+
+
+def instances(syntax: s.LocalComponentSyntax | s.ImportedComponentSyntax, reporter: Reporter) -> list[Instance]:
+    """The components that ``syntax`` declares: one, or one per instance."""
+    name = syntax.name.text
+    options = syntax.instances
+    if options is None:
+        return [Instance(name, None, None, None, None)]
+    namespace = None
+    if options.namespace is not None:
+        namespace = options.namespace.value
+        reason = ros_name_problem(namespace) if namespace != "/" else None
+        if reason is None and namespace.startswith("~"):
+            reason = "a namespace cannot be private ('~')"
+        if reason is not None:
+            reporter.error(options.namespace.span, f"'{namespace}' is not a valid ROS namespace: {reason}", Code.INSTANCES)
+            namespace = None
+    if options.count is None:  # a single component with options: `namespace` and `initial` apply to it
+        if len(options.initial) > 1:
+            reporter.error(
+                options.initial[1].span,
+                f"'{name}' is one component and starts in one state; {len(options.initial)} are given",
+                Code.INSTANCES,
+                f"write 'component {name}[{len(options.initial)}]' for that many instances",
+            )
+        initial = options.initial[0] if options.initial else None
+        return [Instance(name, None, None, namespace.rstrip("/") or "/" if namespace else None, initial)]
+    count = options.count.value
+    if not 1 <= count <= MAX_INSTANCES:
+        reporter.error(
+            options.count.span,
+            f"{count} instances of '{name}': a component has from 1 to {MAX_INSTANCES} instances",
+            Code.INSTANCES if count < 1 else Code.LIMIT,
+        )
+        return []
+    if options.initial and len(options.initial) != count:
+        reporter.error(
+            options.initial[min(len(options.initial), count) - 1].span if len(options.initial) > count else options.span,
+            f"{len(options.initial)} initial states for {count} instances of '{name}': give one per instance, in order",
+            Code.INSTANCES,
+        )
+    prefix = "" if namespace is None else namespace.rstrip("/") + "/"
+    found = []
+    for index in range(1, count + 1):
+        initial = options.initial[index - 1] if len(options.initial) == count else None
+        found.append(Instance(f"{name}{index}", name, index, f"{prefix}{name}{index}", initial))
+    return found
+
+
+def ros_identifier(
+    syntax: s.CommunicationSyntax, instance: Instance, reporter: Reporter
+) -> tuple[str, str | None]:
+    """A communication's name in the model and its ROS name (None: its name, as written)."""
+    local = syntax.name.text
+    identifier = syntax.identifier.value if syntax.identifier is not None else None
+    if instance.namespace is None:
+        return local, identifier
+    name = f"{instance.name}.{local}" if instance.group is not None else local
+    if identifier is not None and identifier[:1] in ("/", "~"):
+        if instance.group is None:
+            return name, identifier  # an absolute name ignores the namespace, as in ROS
+        assert syntax.identifier is not None
+        reporter.error(
+            syntax.identifier.span,
+            f"'{identifier}' is {'an absolute' if identifier[0] == '/' else 'a private'} ROS name: every instance "
+            f"of '{instance.group}' would use the same one",
+            Code.INSTANCES,
+            f"write it relative ('{identifier.lstrip('/~')}'): each instance then has its own, under its namespace",
+        )
+    base = identifier.lstrip("/~") if identifier is not None else local
+    namespace = instance.namespace.rstrip("/")
+    return name, f"{namespace}/{base}" if namespace else f"/{base}"
+
+
+# ---- expanding expressions --------------------------------------------------------
+
+
+def literal(value: bool, span: Span) -> m.Literal:
+    return m.Literal(value, m.BOOLEAN, span)
+
+
+def _bool(e: m.Expr) -> bool | None:
+    return e.value if isinstance(e, m.Literal) and isinstance(e.value, bool) else None
+
+
+def fold(e: m.Expr) -> m.Expr:
+    """``e`` with the boolean constants that deciding ``q != r`` left folded away."""
+    if isinstance(e, m.Unary) and e.op == "!":
+        operand = fold(e.operand)
+        value = _bool(operand)
+        if value is not None:
+            return literal(not value, e.span)
+        return e if operand is e.operand else m.Unary("!", operand, e.type, e.span)
+    if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
+        left, right = fold(e.left), fold(e.right)
+        a, b = _bool(left), _bool(right)
+        if e.op == "and":
+            if a is False or b is False:
+                return literal(False, e.span)
+            if a is True:
+                return right
+            if b is True:
+                return left
+        elif e.op == "or":
+            if a is True or b is True:
+                return literal(True, e.span)
+            if a is False:
+                return right
+            if b is False:
+                return left
+        else:
+            if a is False or b is True:
+                return literal(True, e.span)
+            if a is True:
+                return right
+            if b is False:
+                return fold(m.Unary("!", left, m.BOOLEAN, e.span))
+        if left is e.left and right is e.right:
+            return e
+        return m.Binary(e.op, left, right, e.type, e.span)
+    return e
+
+
+def join(op: str, terms: Sequence[m.Expr], span: Span) -> m.Expr:
+    """The terms joined by ``and`` / ``or`` as a balanced tree (later stages recurse over
+    expressions: a fleet's hundred terms nest 7 deep, not 100); constants folded away."""
+    unit = op == "and"
+    kept: list[m.Expr] = []
+    for term in terms:
+        value = _bool(term)
+        if value is None:
+            kept.append(term)
+        elif value is not unit:
+            return literal(not unit, span)
+    if not kept:
+        return literal(unit, span)
+
+    def build(parts: Sequence[m.Expr]) -> m.Expr:
+        if len(parts) == 1:
+            return parts[0]
+        middle = len(parts) // 2
+        return m.Binary(op, build(parts[:middle]), build(parts[middle:]), m.BOOLEAN, span)
+
+    return build(kept)
