@@ -100,6 +100,10 @@ class Network:
     domains: dict[m.Variable, Sequence[object]] = field(repr=False)
     initial_values: dict[m.Variable, object] = field(repr=False)
     requirements: tuple[Requirement, ...] = ()
+    # marked states must also satisfy this (a counted fleet: no agent outside its marked states)
+    marker: m.Expr | None = None
+    # states outside these are not states of the system: each tuple of counters sums to its total
+    totals: tuple[tuple[tuple[m.Variable, ...], int], ...] = ()
 
     @property
     def controllable(self) -> tuple[Event, ...]:

@@ -117,6 +117,22 @@ class Encoding:
         self.false = self.bdd.false
         every = list(self.fields.values())
         self._valid = {False: self.valid_fields(every, False), True: self.valid_fields(every, True)}
+        for counters, total in network.totals:
+            self._valid[False] &= self.sums_to(counters, total)
+
+    def sums_to(self, counters: Sequence[m.Variable], total: int) -> BDD:
+        """The states where ``counters`` add up to ``total`` (a counted fleet's agents are all
+        somewhere): summed counter by counter, partial sums above ``total`` dropped."""
+        partial = {0: self.true}
+        for counter in counters:
+            field = self.field(counter)
+            step: dict[int, BDD] = {}
+            for so_far, where in partial.items():
+                for index, value in enumerate(field.values):
+                    if so_far + value <= total:
+                        step[so_far + value] = step.get(so_far + value, self.false) | (where & self.code(field, index))
+            partial = step
+        return partial.get(total, self.false)
 
     # -- fields and codes -----------------------------------------------------------
     def field(self, item: Item) -> Field:

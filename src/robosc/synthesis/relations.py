@@ -31,8 +31,8 @@ def edge_relation(enc: Encoding, automaton: Automaton, edge: Edge) -> BDD:
 
 
 def owned_variables(network: Network, automaton: Automaton) -> list[m.Variable]:
-    if automaton.component is None:
-        return []
+    if automaton.component is None:  # a plant owns none; a counted group its counters (robosc.synthesis.symmetry)
+        return [v for v in network.variables if v.owner == automaton.name and v.owner.startswith("#")]
     return [v for v in network.variables if v.owner == automaton.component.name]
 
 

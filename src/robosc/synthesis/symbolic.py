@@ -101,6 +101,8 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
         for location in automaton.marked:
             here |= enc.at(location)
         marked &= here
+    if network.marker is not None:
+        marked &= enc.boolean(network.marker)
     initial = enc.state(
         {a: a.initial for a in network.automata}, {v: network.initial_values[v] for v in network.variables}
     )

@@ -79,7 +79,8 @@ def instances(syntax: s.LocalComponentSyntax | s.ImportedComponentSyntax, report
     prefix = "" if namespace is None else namespace.rstrip("/") + "/"
     found = []
     for index in range(1, count + 1):
-        initial = options.initial[index - 1] if len(options.initial) == count else None
+        # too few given (reported): the last one for the rest, so that nothing else is reported
+        initial = options.initial[min(index, len(options.initial)) - 1] if options.initial else None
         found.append(Instance(f"{name}{index}", name, index, f"{prefix}{name}{index}", initial))
     return found
 

@@ -1,0 +1,823 @@
+"""Synthesis for fleets of identical robots: the counter abstraction of symmetric agents.
+
+An *agent* is a component with its communications' plants. Agents whose automata are the
+same up to renaming (the instances of ``component bot[N]``, or components copied and
+renamed by hand) form a *group*. When every guard and requirement treats a group's agents
+alike (each agent's requirements are the same up to renaming, and other agents appear only
+through ``all``/``any``/``count`` over the whole group, or the chains of ``and``/``or`` those
+expand to), the state of the fleet matters only up to permuting agents: synthesis may count
+how many agents are in each local state instead of tracking which agent is where.
+
+The counted network (one counter per local state, an event per local transition of a
+group's representative) goes through the same fixed point as any network (symbolic.py);
+its size grows polynomially with the number of agents where the monolithic network's
+grows exponentially. Because the system is symmetric, its bad states and the supervisor's
+guards are those of the monolithic method, read through the counters: each added guard is
+written with ``count(...)`` over the group, which the runtime evaluates as it is.
+
+When no group qualifies, :func:`counted` says why and synthesis is monolithic.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from collections.abc import Iterator, Sequence
+from typing import Any
+
+from robosc.language import model as m
+from robosc.language.render import render
+from robosc.language.resolver.instances import fold
+from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
+from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, Network, Requirement, Update
+from robosc.record import field, record
+from robosc.synthesis.evaluate import Undefined, evaluate
+
+LocalState = tuple[tuple[m.State, ...], tuple[object, ...]]  # locations of the agent's automata, its values
+
+
+class NotSymmetric(Exception):
+    """Why the counter abstraction does not apply (synthesis is then monolithic)."""
+
+
+@record(eq=False)
+class Agent:
+    component: m.Component
+    automata: tuple[Automaton, ...]  # the component's automaton, then its communications' plants
+    variables: tuple[m.Variable, ...]
+    events: tuple[Event, ...]  # in the order the automata's edges first name them
+
+
+@record(eq=False)
+class Group:
+    """Agents that are copies of ``agents[0]`` (the representative); ``to_rep``: each agent's
+    states, variables and events -> the representative's."""
+
+    name: str
+    agents: tuple[Agent, ...]
+    to_rep: dict[int, dict[Any, Any]] = field(repr=False)
+    local: tuple[LocalState, ...] = ()  # the representative's local states
+    counters: tuple[m.Variable, ...] = ()  # how many agents are in each local state
+
+    @property
+    def rep(self) -> Agent:
+        return self.agents[0]
+
+
+# ---- finding the groups ---------------------------------------------------------------------
+
+
+def _agents(network: Network) -> list[Agent]:
+    by_name = {a.name: a for a in network.automata}
+    agents = []
+    for automaton in network.automata:
+        component = automaton.component
+        if automaton.kind is not AutomatonKind.COMPONENT or component is None:
+            continue
+        plants = []
+        for c in component.communications:
+            plants += [by_name[n] for n in (c.name, f"{c.name}_data") if n in by_name]
+        automata = (automaton, *plants)
+        events: list[Event] = []
+        for a in automata:
+            for edge in a.edges:
+                if edge.event not in events:
+                    events.append(edge.event)
+        variables = tuple(v for v in network.variables if v.owner == component.name)
+        agents.append(Agent(component, automata, variables, tuple(events)))
+    return agents
+
+
+def _own(agent: Agent) -> re.Pattern[str]:
+    names = [re.escape(a.name) for a in agent.automata] + [re.escape(agent.component.name)]
+    return re.compile(r"(?<![\w.])(" + "|".join(sorted(set(names), key=len, reverse=True)) + r")(?=\.)")
+
+
+def _signature(agent: Agent) -> tuple[Any, ...]:
+    """What two copies have in common: the automata's shapes, their own names replaced by
+    their position, events by the order they first appear."""
+    own = _own(agent)
+    automaton_index = {a.name: f"#{i}" for i, a in enumerate(agent.automata)}
+    automaton_index[agent.component.name] = "#0"
+
+    def text(e: m.Expr | None) -> str:
+        return "" if e is None else own.sub(lambda found: automaton_index[found.group(1)], render(e))
+
+    event_index = {e: i for i, e in enumerate(agent.events)}
+    shapes = []
+    for a in agent.automata:
+        locations = tuple((loc.name, loc.marked) for loc in a.locations)
+        edges = tuple(
+            (
+                edge.source.name,
+                edge.target.name,
+                event_index[edge.event],
+                edge.event.controllable,
+                edge.event.kind.value,
+                text(edge.guard),
+                tuple((u.variable.name, text(u.value)) for u in edge.updates),
+            )
+            for edge in a.edges
+        )
+        shapes.append((a.kind.value, locations, edges))
+    variables = tuple((v.name, str(v.type)) for v in agent.variables)
+    return tuple(shapes), variables
+
+
+def _map(agent: Agent, rep: Agent) -> dict[Any, Any]:
+    """The agent's states, variables, events and automata names -> the representative's."""
+    found: dict[Any, Any] = {}
+    for a, r in zip(agent.automata, rep.automata, strict=True):
+        found[a.name] = r.name
+        for loc, rloc in zip(a.locations, r.locations, strict=True):
+            found[loc] = rloc
+    found[agent.component.name] = rep.component.name
+    for v, rv in zip(agent.variables, rep.variables, strict=True):
+        found[v] = rv
+    for e, re_ in zip(agent.events, rep.events, strict=True):
+        found[e] = re_
+    return found
+
+
+def groups(network: Network) -> list[Group]:
+    """The groups of two or more agents that are copies of each other, and whose events no
+    automaton outside the agent shares."""
+    agents = _agents(network)
+    owner_of_event: dict[Event, set[str]] = {}
+    for automaton in network.automata:
+        for event in automaton.alphabet:
+            owner_of_event.setdefault(event, set()).add(automaton.name)
+    by_signature: dict[Any, list[Agent]] = {}
+    for agent in agents:
+        names = {a.name for a in agent.automata}
+        if any(not owner_of_event.get(e, set()) <= names for e in agent.events):
+            continue  # an event shared with something outside the agent
+        by_signature.setdefault(_signature(agent), []).append(agent)
+    found = []
+    for members in by_signature.values():
+        if len(members) < 2:
+            continue
+        group = members[0].component.group or members[0].component.name
+        to_rep = {id(a): _map(a, members[0]) for a in members}
+        found.append(Group(group, tuple(members), to_rep))
+    return found
+
+
+# ---- the representative's local states and moves -------------------------------------------
+
+
+@record(eq=False)
+class Move:
+    """A local transition of the representative: ``event`` from ``source`` to ``target``
+    where ``guard`` holds (over its own state, shared state and the other agents)."""
+
+    event: Event
+    source: int  # indices into Group.local
+    target: int
+    guard: m.Expr | None
+
+
+def _moves_from(network: Network, agent: Agent, state: LocalState) -> Iterator[tuple[Event, LocalState, m.Expr | None]]:
+    locations, values = state
+    environment = dict(zip(agent.variables, values, strict=True))
+    for event in agent.events:
+        options: list[list[Edge]] = []
+        for automaton, location in zip(agent.automata, locations, strict=True):
+            if event not in automaton.alphabet:
+                options.append([])
+                continue
+            edges = [e for e in automaton.edges if e.source is location and e.event is event]
+            if not edges:
+                break
+            options.append(edges)
+        else:
+            for chosen in itertools.product(*[o or [None] for o in options]):
+                targets = tuple(
+                    edge.target if edge is not None else loc for edge, loc in zip(chosen, locations, strict=True)
+                )
+                guards = [e.guard for e in chosen if e is not None and e.guard is not None]
+                updates = [u for e in chosen if e is not None for u in e.updates]
+                for new_values in _updated(network, agent, environment, updates, set(locations)):
+                    yield event, (targets, new_values), all_of(guards) if guards else None
+
+
+def _updated(
+    network: Network, agent: Agent, values: dict[m.Variable, object], updates: Sequence[Update], at: set[m.State]
+) -> Iterator[tuple[object, ...]]:
+    choices: list[Sequence[object]] = []
+    for variable in agent.variables:
+        update = next((u for u in updates if u.variable is variable), None)
+        if update is None:
+            choices.append((values[variable],))
+        elif update.value is None:
+            choices.append(network.domains[variable])
+        else:
+            if any(isinstance(n, (m.StateRef, m.VariableRef)) and _owner(n) not in _names(agent) for n in m.walk(update.value)):
+                raise NotSymmetric(f"an update of {variable.name} reads another agent")
+            try:
+                value = evaluate(update.value, at, values)
+            except (Undefined, KeyError) as exc:
+                raise NotSymmetric(f"an update of {variable.name} cannot be computed locally") from exc
+            if value not in network.domains[variable]:
+                return
+            choices.append((value,))
+    yield from itertools.product(*choices)
+
+
+def _owner(node: m.Expr) -> str:
+    if isinstance(node, m.StateRef):
+        return node.state.owner
+    assert isinstance(node, m.VariableRef)
+    return node.variable.owner
+
+
+def _names(agent: Agent) -> set[str]:
+    return {a.name for a in agent.automata} | {agent.component.name}
+
+
+def explore(network: Network, group: Group) -> tuple[Group, list[Move]]:
+    """The group with its local states (those reachable from its agents' start, guards
+    aside) and counters; the representative's moves between them."""
+    rep = group.rep
+    starts = []
+    for agent in group.agents:
+        mapping = group.to_rep[id(agent)]
+        locations = tuple(mapping[a.initial] for a in agent.automata)
+        values = tuple(network.initial_values[v] for v in agent.variables)
+        starts.append((locations, values))
+    index: dict[LocalState, int] = {}
+    order: list[LocalState] = []
+    found: dict[LocalState, list[tuple[Event, LocalState, m.Expr | None]]] = {}
+    for start in starts:  # breadth-first from each start in turn: a route's states come in its order
+        if start in index:
+            continue
+        index[start] = len(order)
+        order.append(start)
+        at = index[start]
+        while at < len(order):  # grows while it is walked
+            state = order[at]
+            at += 1
+            found[state] = list(_moves_from(network, rep, state))
+            for _, target, _ in found[state]:
+                if target not in index:
+                    index[target] = len(order)
+                    order.append(target)
+    moves = [
+        Move(event, index[state], index[target], guard) for state in order for event, target, guard in found[state]
+    ]
+    n = len(group.agents)
+    counters = tuple(
+        m.Variable(f"{group.name}[{i}]", f"#{group.name}", m.BasicType(m.BasicKind.INTEGER, 0, n), None, NO_SPAN)
+        for i in range(len(order))
+    )
+    return Group(group.name, group.agents, group.to_rep, tuple(order), counters), moves
+
+
+# ---- conditions over the fleet, read through the counters -----------------------------------
+
+
+def _flatten(e: m.Expr, op: str) -> list[m.Expr]:
+    if isinstance(e, m.Binary) and e.op == op:
+        return _flatten(e.left, op) + _flatten(e.right, op)
+    return [e]
+
+
+def _ge(counter: m.Variable, bound: int) -> m.Expr:
+    ref = m.VariableRef(counter, (), counter.type, NO_SPAN)
+    return m.Binary(">=", ref, m.Literal(bound, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+
+
+def _le(counter: m.Variable, bound: int) -> m.Expr:
+    ref = m.VariableRef(counter, (), counter.type, NO_SPAN)
+    return m.Binary("<=", ref, m.Literal(bound, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+
+
+def _value(variable: m.Variable, value: object) -> m.Expr:
+    if isinstance(value, m.EnumValue):
+        assert isinstance(variable.type, m.EnumType)
+        return m.EnumLiteral(variable.type, value, NO_SPAN)
+    return m.Literal(value, variable.type, NO_SPAN)  # type: ignore[arg-type]
+
+
+class Translator:
+    """Conditions over the fleet as conditions over counters. A *template* is written over
+    shared state, the counters, and the representative's own state standing for the agent
+    the condition is about (``self``: the agent whose event it guards, None for none)."""
+
+    def __init__(self, network: Network, found: Sequence[Group]) -> None:
+        self.network = network
+        self.groups = list(found)
+        self.agent_of: dict[str, tuple[Group, Agent]] = {}
+        for group in self.groups:
+            for agent in group.agents:
+                for name in _names(agent):
+                    self.agent_of[name] = (group, agent)
+        self._agents: dict[int, frozenset[int]] = {}
+        self._predicates: dict[tuple[str, str, str], frozenset[int]] = {}
+
+    def agents_in(self, e: m.Expr) -> frozenset[int]:
+        """The agents (by id) that ``e`` reads."""
+        key = id(e)
+        found = self._agents.get(key)
+        if found is None:
+            ids = set()
+            for node in m.walk(e):
+                if isinstance(node, (m.StateRef, m.VariableRef)):
+                    owner = self.agent_of.get(_owner(node))
+                    if owner is not None:
+                        ids.add(id(owner[1]))
+            found = self._agents[key] = frozenset(ids)
+        return found
+
+    def rename(self, e: m.Expr, agent: Agent) -> m.Expr:
+        """``e`` with ``agent``'s own states and variables renamed to the representative's."""
+        group, _ = self.agent_of[agent.component.name]
+        mapping = group.to_rep[id(agent)]
+        if agent is group.rep:
+            return e
+
+        def go(node: m.Expr) -> m.Expr:
+            if isinstance(node, m.StateRef) and node.state in mapping:
+                return m.StateRef(mapping[node.state], node.span)
+            if isinstance(node, m.VariableRef) and node.variable in mapping:
+                return m.VariableRef(mapping[node.variable], node.steps, node.type, node.span)
+            if isinstance(node, m.Unary):
+                return m.Unary(node.op, go(node.operand), node.type, node.span)
+            if isinstance(node, m.Binary):
+                return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
+            if isinstance(node, m.Count):
+                return m.Count(node.group, tuple(go(t) for t in node.terms), node.type, node.span)
+            return node
+
+        return go(e)
+
+    def at(self, group: Group, index: int) -> m.Expr:
+        """The representative is in local state ``index``."""
+        locations, values = group.local[index]
+        parts: list[m.Expr] = [
+            m.StateRef(loc, NO_SPAN) for a, loc in zip(group.rep.automata, locations, strict=True) if len(a.locations) > 1
+        ]
+        for variable, value in zip(group.rep.variables, values, strict=True):
+            parts.append(m.Binary("=", m.VariableRef(variable, (), variable.type, NO_SPAN), _value(variable, value), m.BOOLEAN, NO_SPAN))
+        return all_of(parts)
+
+    def _predicate(self, group: Group, e: m.Expr, agent: Agent) -> frozenset[int]:
+        """The local states (indices) where ``e``, over ``agent``'s own state only, holds."""
+        renamed = self.rename(e, agent)
+        key = (group.name, render(renamed), str(id(group)))
+        found = self._predicates.get(key)
+        if found is None:
+            holds = set()
+            for index, (locations, values) in enumerate(group.local):
+                environment = dict(zip(group.rep.variables, values, strict=True))
+                try:
+                    if evaluate(renamed, set(locations), environment):
+                        holds.add(index)
+                except (Undefined, KeyError) as exc:
+                    raise NotSymmetric(f"'{render(e)}' cannot be evaluated for one agent") from exc
+            found = self._predicates[key] = frozenset(holds)
+        return found
+
+    def template(self, e: m.Expr, me: Agent | None) -> m.Expr:
+        mine = id(me) if me is not None else None
+        others = self.agents_in(e) - {mine}
+        if not others:
+            return self.rename(e, me) if me is not None else e
+        if isinstance(e, m.Unary) and e.op == "!":
+            return negate(self.template(e.operand, me))
+        if isinstance(e, m.Binary) and e.op in ("and", "or"):
+            return self._chain(e, me)
+        if isinstance(e, m.Count):
+            return self._count(e, me)
+        if isinstance(e, m.Binary):
+            return m.Binary(e.op, self.template(e.left, me), self.template(e.right, me), e.type, e.span)
+        raise NotSymmetric(f"'{render(e)}' names one agent of a group of copies")
+
+    def _buckets(
+        self, operands: Sequence[m.Expr], me: Agent | None
+    ) -> tuple[list[m.Expr], dict[int, tuple[Group, Agent, list[m.Expr]]]]:
+        """The operands that name no other agent (as templates), and the others by the one
+        other agent they name."""
+        mine = id(me) if me is not None else None
+        kept: list[m.Expr] = []
+        buckets: dict[int, tuple[Group, Agent, list[m.Expr]]] = {}
+        by_id = {id(a): (g, a) for g in self.groups for a in g.agents}
+        for operand in operands:
+            named = self.agents_in(operand)
+            others = named - {mine}
+            if not others:
+                kept.append(self.rename(operand, me) if me is not None else operand)
+            elif len(others) == 1 and mine not in named:
+                (agent_id,) = others
+                group, agent = by_id[agent_id]
+                buckets.setdefault(agent_id, (group, agent, []))[2].append(operand)
+            else:
+                kept.append(self.template(operand, me))
+        return kept, buckets
+
+    def _over_group(
+        self, buckets: dict[int, tuple[Group, Agent, list[m.Expr]]], me: Agent | None, op: str
+    ) -> Iterator[tuple[Group, frozenset[int], bool]]:
+        """Per group: the local states where each other agent's part holds (the same for
+        all, or not symmetric), and whether ``me`` is one of the group."""
+        per_group: dict[str, list[tuple[Group, Agent, list[m.Expr]]]] = {}
+        for entry in buckets.values():
+            per_group.setdefault(entry[0].name, []).append(entry)
+        for entries in per_group.values():
+            group = entries[0][0]
+            mine_in = me is not None and any(a is me for a in group.agents)
+            expected = {id(a) for a in group.agents} - ({id(me)} if mine_in else set())
+            if {id(agent) for _, agent, _ in entries} != expected:
+                raise NotSymmetric(f"a condition names some agents of '{group.name}' and not the others")
+            predicates = {self._predicate(group, _join(op, parts), agent) for _, agent, parts in entries}
+            if len(predicates) != 1:
+                raise NotSymmetric(f"a condition asks different things of the agents of '{group.name}'")
+            yield group, predicates.pop(), mine_in
+
+    def _chain(self, e: m.Binary, me: Agent | None) -> m.Expr:
+        kept, buckets = self._buckets(_flatten(e, e.op), me)
+        for group, holds, mine_in in self._over_group(buckets, me, e.op):
+            parts = []
+            if e.op == "or":  # another agent of the group is in one of these local states
+                for index in sorted(holds):
+                    counter = group.counters[index]
+                    if mine_in:
+                        parts.append(any_of([_ge(counter, 2), all_of([negate(self.at(group, index)), _ge(counter, 1)])]))
+                    else:
+                        parts.append(_ge(counter, 1))
+                kept.append(any_of(parts))
+            else:  # every other agent of the group is in one of these local states
+                for index in range(len(group.local)):
+                    if index in holds:
+                        continue
+                    counter = group.counters[index]
+                    if mine_in:
+                        parts.append(any_of([_le(counter, 0), all_of([self.at(group, index), _le(counter, 1)])]))
+                    else:
+                        parts.append(_le(counter, 0))
+                kept.append(all_of(parts))
+        return _join(e.op, kept)
+
+    def _count(self, e: m.Count, me: Agent | None) -> m.Expr:
+        kept, buckets = self._buckets(e.terms, me)
+        total: list[m.Expr] = [m.Count("", tuple(kept), m.BasicType(m.BasicKind.INTEGER, 0, len(kept)), e.span)] if kept else []
+        for group, holds, mine_in in self._over_group(buckets, me, "or"):
+            for index in sorted(holds):
+                counter = group.counters[index]
+                total.append(m.VariableRef(counter, (), counter.type, NO_SPAN))
+            if mine_in and holds:  # the agent itself is counted in the counters, not among the others
+                mine = any_of([self.at(group, index) for index in sorted(holds)])
+                total.append(m.Unary("-", m.Count("", (mine,), m.BasicType(m.BasicKind.INTEGER, 0, 1), e.span), m.INTEGER, e.span))
+        if not total:
+            return m.Literal(0, m.INTEGER, e.span)
+        result = total[0]
+        for part in total[1:]:
+            result = m.Binary("+", result, part, m.INTEGER, e.span)
+        return result
+
+    def instantiate(self, template: m.Expr, group: Group, index: int) -> m.Expr:
+        """A template with the representative in local state ``index``: its own state known."""
+        locations, values = group.local[index]
+        here = set(locations)
+        rep_locations = {loc for a in group.rep.automata for loc in a.locations}
+        known = dict(zip(group.rep.variables, values, strict=True))
+
+        def go(node: m.Expr) -> m.Expr:
+            if isinstance(node, m.StateRef) and node.state in rep_locations:
+                return TRUE if node.state in here else FALSE
+            if isinstance(node, m.VariableRef) and node.variable in known and not node.steps:
+                return _value(node.variable, known[node.variable])
+            if isinstance(node, m.Unary):
+                return m.Unary(node.op, go(node.operand), node.type, node.span)
+            if isinstance(node, m.Binary):
+                return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
+            if isinstance(node, m.Count):
+                return m.Count(node.group, tuple(go(t) for t in node.terms), node.type, node.span)
+            return node
+
+        return fold(go(template))
+
+
+def _join(op: str, parts: Sequence[m.Expr]) -> m.Expr:
+    return all_of(parts) if op == "and" else any_of(parts)
+
+
+# ---- the counted network -------------------------------------------------------------------
+
+
+@record(eq=False)
+class Counted:
+    """A network counted: the network synthesis runs on, its groups, and for each of its
+    events made for a move, the group and the move."""
+
+    network: Network
+    groups: tuple[Group, ...]
+    moves: dict[Event, tuple[Group, Move]]
+    translator: Translator = field(repr=False)
+
+
+def counted(network: Network) -> Counted:
+    """The counter abstraction of ``network``; raises :class:`NotSymmetric` saying why not."""
+    found = groups(network)
+    if not found:
+        raise NotSymmetric("no two components are copies of each other")
+    explored = [explore(network, group) for group in found]
+    found = [group for group, _ in explored]
+    translator = Translator(network, found)
+    in_agents = {a.name for group in found for agent in group.agents for a in agent.automata}
+    agent_events = {e for group in found for agent in group.agents for e in agent.events}
+    agent_variables = {v for group in found for agent in group.agents for v in agent.variables}
+
+    automata: list[Automaton] = []
+    for automaton in network.automata:  # shared: kept, their guards and updates read through the counters
+        if automaton.name in in_agents:
+            continue
+        edges = tuple(
+            Edge(
+                e.source,
+                e.target,
+                e.event,
+                translator.template(e.guard, None) if e.guard is not None else None,
+                tuple(Update(u.variable, translator.template(u.value, None) if u.value is not None else None) for u in e.updates),
+            )
+            for e in automaton.edges
+        )
+        automata.append(Automaton(automaton.name, automaton.kind, automaton.locations, automaton.initial, edges, automaton.alphabet, automaton.component))
+    events = [e for e in network.events if e not in agent_events]
+    requirements = [
+        Requirement(r.event, translator.template(r.condition, None), r.description, r.origin)
+        for r in network.requirements
+        if r.event not in agent_events
+    ]
+    moves: dict[Event, tuple[Group, Move]] = {}
+    markers: list[m.Expr] = []
+    initial_values = {v: network.initial_values[v] for v in network.variables if v not in agent_variables}
+    for group, group_moves in explored:
+        group = next(g for g in found if g.name == group.name)
+        _check_requirements(network, translator, group)
+        location = m.State("fleet", f"#{group.name}", True, True, NO_SPAN)
+        edges = []
+        templates: dict[int, m.Expr] = {}
+        for move in group_moves:
+            counter = group.counters[move.source]
+            event = Event(
+                f"{move.event.name}@{move.source}",
+                move.event.controllable,
+                move.event.kind,
+                move.event.communication,
+                move.event.transition,
+                move.event.provide,
+            )
+            guard = _ge(counter, 1)
+            if move.guard is not None:
+                guard = all_of([guard, translator.instantiate(translator.template(move.guard, group.rep), group, move.source)])
+            updates: tuple[Update, ...] = ()
+            if move.source != move.target:
+                target = group.counters[move.target]
+                updates = (
+                    Update(counter, _add(counter, -1)),
+                    Update(target, _add(target, 1)),
+                )
+            edges.append(Edge(location, location, event, guard, updates))
+            events.append(event)
+            moves[event] = (group, move)
+            for requirement in network.requirements_on(move.event):
+                key = id(requirement)
+                if key not in templates:
+                    templates[key] = translator.template(requirement.condition, group.rep)
+                condition = translator.instantiate(templates[key], group, move.source)
+                requirements.append(Requirement(event, condition, requirement.description, requirement.origin))
+        automata.append(
+            Automaton(f"#{group.name}", AutomatonKind.DATA, (location,), location, tuple(edges), frozenset(e.event for e in edges))
+        )
+        unmarked = [
+            i for i, (locations, _) in enumerate(group.local) if not all(loc.marked for loc in locations)
+        ]
+        markers += [_le(group.counters[i], 0) for i in unmarked]
+        starts: dict[int, int] = {}
+        index = {state: i for i, state in enumerate(group.local)}
+        for agent in group.agents:
+            mapping = group.to_rep[id(agent)]
+            start = (tuple(mapping[a.initial] for a in agent.automata), tuple(network.initial_values[v] for v in agent.variables))
+            starts[index[start]] = starts.get(index[start], 0) + 1
+        for i, counter in enumerate(group.counters):
+            initial_values[counter] = starts.get(i, 0)
+    variables = tuple(v for v in network.variables if v not in agent_variables) + tuple(
+        c for group in found for c in group.counters
+    )
+    domains = {v: network.domains[v] for v in network.variables if v not in agent_variables}
+    for group in found:
+        for counter in group.counters:
+            domains[counter] = range(len(group.agents) + 1)
+    result = Network(
+        network.model,
+        tuple(events),
+        tuple(automata),
+        variables,
+        domains,
+        initial_values,
+        tuple(requirements),
+        all_of(markers) if markers else None,
+        tuple((group.counters, len(group.agents)) for group in found),
+    )
+    return Counted(result, tuple(found), moves, translator)
+
+
+def _add(counter: m.Variable, amount: int) -> m.Expr:
+    ref = m.VariableRef(counter, (), counter.type, NO_SPAN)
+    op = "+" if amount > 0 else "-"
+    return m.Binary(op, ref, m.Literal(abs(amount), m.INTEGER, NO_SPAN), m.INTEGER, NO_SPAN)
+
+
+def _check_requirements(network: Network, translator: Translator, group: Group) -> None:
+    """Each agent's requirements say of it what the representative's say of the representative."""
+    expected = None
+    for agent in group.agents:
+        mapping = group.to_rep[id(agent)]
+        texts = sorted(
+            (mapping[r.event].name, render(translator.template(r.condition, agent)))
+            for e in agent.events
+            for r in network.requirements_on(e)
+        )
+        if expected is None:
+            expected = texts
+        elif texts != expected:
+            raise NotSymmetric(
+                f"the requirements of '{agent.component.name}' differ from those of '{group.rep.component.name}'"
+            )
+
+
+# ---- synthesis ------------------------------------------------------------------------------
+
+
+class CountedSupervisor:
+    """The supervisor a counted synthesis found, asked about states of the original network."""
+
+    def __init__(self, network: Network, fleet: Counted, fixpoint: Any) -> None:
+        self.network = network
+        self.fleet = fleet
+        self.fp = fixpoint
+        self.agent_of_event: dict[Event, tuple[Group, Agent]] = {}
+        for group in fleet.groups:
+            for agent in group.agents:
+                for event in agent.events:
+                    self.agent_of_event[event] = (group, agent)
+
+    def _state(self, state: Any) -> Any:
+        """The counted state of an original network state."""
+        fleet, enc = self.fleet, self.fp.enc
+        where = dict(zip(self.network.automata, state.locations, strict=True))
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        locations = {a: where[a] if a.name in {x.name for x in self.network.automata} else a.initial for a in fleet.network.automata}
+        by_name = {a.name: a for a in self.network.automata}
+        for automaton in fleet.network.automata:
+            if automaton.name in by_name:
+                locations[automaton] = where[by_name[automaton.name]]
+        counted_values = {v: values[v] for v in fleet.network.variables if v in values}
+        for group in fleet.groups:
+            counts = [0] * len(group.local)
+            index = {s: i for i, s in enumerate(group.local)}
+            for agent in group.agents:
+                counts[index[self.local(group, agent, where, values)]] += 1
+            counted_values.update(zip(group.counters, counts, strict=True))
+        return enc.state(locations, counted_values)
+
+    @staticmethod
+    def local(group: Group, agent: Agent, where: dict[Automaton, m.State], values: dict[m.Variable, object]) -> LocalState:
+        mapping = group.to_rep[id(agent)]
+        return tuple(mapping[where[a]] for a in agent.automata), tuple(values[v] for v in agent.variables)
+
+    def allows(self, event: Event, state: Any) -> bool:
+        here = self._state(state)
+        fp, enc = self.fp, self.fp.enc
+        owner = self.agent_of_event.get(event)
+        if owner is None:
+            if event.controllable:
+                return bool((here & fp.allowed[event]) != enc.false)
+            return bool((here & fp.enabled[event] & ~fp.bad) != enc.false)
+        group, agent = owner
+        where = dict(zip(self.network.automata, state.locations, strict=True))
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        source = {s: i for i, s in enumerate(group.local)}[self.local(group, agent, where, values)]
+        rep_event = group.to_rep[id(agent)][event]
+        for counted_event, (g, move) in self.fleet.moves.items():
+            if g is group and move.event is rep_event and move.source == source:
+                bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
+                if (here & bdd) != enc.false:
+                    return True
+        return False
+
+    def controlled(self, state: Any) -> bool:
+        return bool((self._state(state) & self.fp.bad) == self.fp.enc.false)
+
+
+def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
+    """An expression over the counted network with each counter written as a ``count(...)``
+    of the original model: how many of the group's agents are in that local state."""
+    counters = {c: (group, i) for group in fleet.groups for i, c in enumerate(group.counters)}
+    translator = fleet.translator
+
+    def agent_at(group: Group, agent: Agent, index: int) -> m.Expr:
+        back = {v: k for k, v in group.to_rep[id(agent)].items()}
+        return translator.rename(translator.at(group, index), group.rep) if agent is group.rep else _rename_back(translator.at(group, index), back)
+
+    def go(node: m.Expr) -> m.Expr:
+        if isinstance(node, m.VariableRef) and node.variable in counters:
+            group, index = counters[node.variable]
+            terms = tuple(agent_at(group, agent, index) for agent in group.agents)
+            return m.Count(group.name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
+        if isinstance(node, m.Unary):
+            return m.Unary(node.op, go(node.operand), node.type, node.span)
+        if isinstance(node, m.Binary):
+            return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
+        return node
+
+    return go(e)
+
+
+def _rename_back(e: m.Expr, back: dict[Any, Any]) -> m.Expr:
+    if isinstance(e, m.StateRef) and e.state in back:
+        return m.StateRef(back[e.state], e.span)
+    if isinstance(e, m.VariableRef) and e.variable in back:
+        return m.VariableRef(back[e.variable], e.steps, e.type, e.span)
+    if isinstance(e, m.Unary):
+        return m.Unary(e.op, _rename_back(e.operand, back), e.type, e.span)
+    if isinstance(e, m.Binary):
+        return m.Binary(e.op, _rename_back(e.left, back), _rename_back(e.right, back), e.type, e.span)
+    return e
+
+
+def synthesize_counted(network: Network, options: Any = None) -> Any:
+    """Synthesis by the counter abstraction where the network's agents are symmetric; the
+    monolithic method (saying why in ``details["symmetry"]``) where they are not."""
+    import time
+
+    from robosc.synthesis.explain import explain
+    from robosc.synthesis.options import DEFAULT
+    from robosc.synthesis.readable import readable
+    from robosc.synthesis.result import EventGuard, SynthesisResult
+    from robosc.synthesis.symbolic import fixpoint, synthesize_symbolic
+
+    options = options or DEFAULT
+    start = time.perf_counter()
+    try:
+        fleet = counted(network)
+    except NotSymmetric as reason:
+        result = synthesize_symbolic(network, options)
+        details = dict(result.details, symmetry=f"monolithic: {reason}")
+        return SynthesisResult(
+            result.network, result.method, result.ok, result.guards, result.reachable_states,
+            time.perf_counter() - start, result.explanation, details,
+        )
+    fp = fixpoint(fleet.network, options)
+    enc = fp.enc
+    described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
+    details: dict[str, Any] = {
+        "counted": fp,
+        "effort": enc.effort(),
+        "symmetry": f"counted ({described})",
+        "supervisor": CountedSupervisor(network, fleet, fp),
+    }
+    if (fp.initial & fp.bad) != enc.false:
+        return SynthesisResult(
+            network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
+        )
+    translator = fleet.translator
+    by_rep: dict[Event, list[Event]] = {}
+    for counted_event, (_, move) in fleet.moves.items():
+        by_rep.setdefault(move.event, []).append(counted_event)
+    supervisor: CountedSupervisor = details["supervisor"]
+    guards = []
+    for event in network.controllable:
+        conditions = [r.condition for r in network.requirements_on(event)]
+        required: m.Expr | None = all_of(conditions) if conditions else None
+        owner = supervisor.agent_of_event.get(event)
+        if owner is None:
+            pairs = [(event, None)]
+        else:
+            group, agent = owner
+            rep_event = group.to_rep[id(agent)][event]
+            pairs = [(ce, fleet.moves[ce][1].source) for ce in by_rep.get(rep_event, [])]
+        parts = []
+        for counted_event, source in pairs:
+            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
+            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
+            if (care & ~beyond) == enc.false:
+                continue
+            added = _lift(readable(enc, beyond, care), fleet)
+            if source is not None:
+                group, agent = owner  # type: ignore[misc]
+                back = {v: k for k, v in group.to_rep[id(agent)].items()}
+                here = _rename_back(translator.at(group, source), back)
+                added = m.Binary("=>", here, added, m.BOOLEAN, NO_SPAN)
+            parts.append(added)
+        guards.append(EventGuard(event, required, all_of(parts) if parts else None))
+    return SynthesisResult(
+        network,
+        "symmetric",
+        True,
+        tuple(guards),
+        enc.count(fp.reachable),
+        time.perf_counter() - start,
+        details=details,
+    )
