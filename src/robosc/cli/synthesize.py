@@ -13,7 +13,7 @@ from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
-from robosc.synthesis.options import ORDERS, SynthesisOptions
+from robosc.synthesis.options import FLEETS, ORDERS, SynthesisOptions
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
 from robosc.wrapping import fill
@@ -55,6 +55,7 @@ def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -
         "ok": result.ok,
         "method": result.method,
         "reachable_states": result.reachable_states if result.ok else None,
+        "fleet": result.details.get("symmetry"),
         "seconds": round(result.seconds, 6),
         "events": [
             {
@@ -125,8 +126,10 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         for restriction in restrictions:
             for line in why_lines(restriction):
                 show("  " + line, "      ")
+    counted = " (counted: robots in the same states, in any order, count once)" if result.method == "symmetric" else ""
     show(
-        f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled system; "
+        f"{result.reachable_states} reachable state{'s' if result.reachable_states != 1 else ''} in the controlled "
+        f"system{counted}; "
         f"synthesis added a condition to {len(result.added_guards)} of {len(result.guards)} controllable events; "
         f"{result.seconds * 1000:.1f} ms",
         "",
@@ -171,6 +174,13 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
     help="Let CUDD improve the variable order while it works (dynamic sifting): less memory, usually more time.",
 )
 @click.option(
+    "--fleet",
+    type=click.Choice(list(FLEETS)),
+    default="counted",
+    show_default=True,
+    help="How fleets of identical robots are synthesized (docs/synthesis-options.md): the supervisor is the same.",
+)
+@click.option(
     "--stats",
     is_flag=True,
     help="Also print the effort of symbolic synthesis in figures that do not depend on the machine: "
@@ -184,12 +194,13 @@ def synthesize(
     show_network: bool,
     order: str,
     reorder: bool,
+    fleet: str,
     stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    options = SynthesisOptions(order, reorder)
+    options = SynthesisOptions(order, reorder, fleet)
     result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
     cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
     if show_network:
@@ -216,6 +227,7 @@ def synthesize(
             say(
                 f"effort: {effort['peak_live_nodes']:,} peak live BDD nodes, {effort['images']:,} images, "
                 f"{effort['preimages']:,} preimages, {effort['variables']} state bits; "
+                f"{result.details.get('symmetry', 'monolithic')}; "
                 f"{result.seconds * 1000:.1f} ms"
             )
         print_warnings(warnings)

@@ -17,18 +17,30 @@ ORDERS = {
 }
 
 
+FLEETS = {
+    "counted": "where three or more components are copies of each other (the instances of `component bot[N]`, "
+    "or components copied by hand) and the requirements treat them alike, count how many are in each state "
+    "instead of tracking each (the default; monolithic where they are not)",
+    "monolithic": "one BDD over every component's state, whatever the model (the reference method)",
+}
+
+
 @record
 class SynthesisOptions:
     """``order``: the initial BDD variable order, one of :data:`ORDERS`. ``reorder``: let CUDD
     improve the order while it works (dynamic sifting): far fewer BDD nodes and less memory on
-    large models, usually more time."""
+    large models, usually more time. ``fleet``: how fleets of identical robots are synthesized,
+    one of :data:`FLEETS`."""
 
     order: str = "interaction"
     reorder: bool = False
+    fleet: str = "counted"
 
     def __post_init__(self) -> None:
         if self.order not in ORDERS:
             raise ValueError(f"unknown variable order '{self.order}' (one of {', '.join(ORDERS)})")
+        if self.fleet not in FLEETS:
+            raise ValueError(f"unknown fleet method '{self.fleet}' (one of {', '.join(FLEETS)})")
 
 
 DEFAULT = SynthesisOptions()

@@ -139,7 +139,16 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
 
 def synthesize_symbolic(network: Network, options: SynthesisOptions = DEFAULT) -> SynthesisResult:
     """The maximally permissive controllable, nonblocking supervisor of ``network``
-    (``options``: how to compute it; the result is the same whatever they are)."""
+    (``options``: how to compute it; the supervisor is the same whatever they are)."""
+    if options.fleet == "counted":
+        from robosc.synthesis.symmetry import synthesize_counted
+
+        return synthesize_counted(network, options)
+    return synthesize_monolithic(network, options)
+
+
+def synthesize_monolithic(network: Network, options: SynthesisOptions = DEFAULT) -> SynthesisResult:
+    """:func:`synthesize_symbolic` over one BDD of the whole network's state."""
     from robosc.synthesis.explain import explain
     from robosc.synthesis.readable import readable
 

@@ -386,9 +386,11 @@ class Translator:
         if isinstance(e, m.Unary) and e.op == "!":
             return negate(self.template(e.operand, me))
         if isinstance(e, m.Binary) and e.op in ("and", "or"):
-            return self._chain(e, me)
+            return self._chain(_flatten(e, e.op), e.op, me)
         if isinstance(e, m.Count):
             return self._count(e, me)
+        if len(others) == 1 and mine not in self.agents_in(e):  # of a group of two: `!R1.charging` for R0
+            return self._chain([e], "or", me)
         if isinstance(e, m.Binary):
             return m.Binary(e.op, self.template(e.left, me), self.template(e.right, me), e.type, e.span)
         raise NotSymmetric(f"'{render(e)}' names one agent of a group of copies")
@@ -434,11 +436,11 @@ class Translator:
                 raise NotSymmetric(f"a condition asks different things of the agents of '{group.name}'")
             yield group, predicates.pop(), mine_in
 
-    def _chain(self, e: m.Binary, me: Agent | None) -> m.Expr:
-        kept, buckets = self._buckets(_flatten(e, e.op), me)
-        for group, holds, mine_in in self._over_group(buckets, me, e.op):
+    def _chain(self, operands: Sequence[m.Expr], op: str, me: Agent | None) -> m.Expr:
+        kept, buckets = self._buckets(operands, me)
+        for group, holds, mine_in in self._over_group(buckets, me, op):
             parts = []
-            if e.op == "or":  # another agent of the group is in one of these local states
+            if op == "or":  # another agent of the group is in one of these local states
                 for index in sorted(holds):
                     counter = group.counters[index]
                     if mine_in:
@@ -456,7 +458,7 @@ class Translator:
                     else:
                         parts.append(_le(counter, 0))
                 kept.append(all_of(parts))
-        return _join(e.op, kept)
+        return _join(op, kept)
 
     def _count(self, e: m.Count, me: Agent | None) -> m.Expr:
         kept, buckets = self._buckets(e.terms, me)
@@ -516,11 +518,12 @@ class Counted:
     translator: Translator = field(repr=False)
 
 
-def counted(network: Network) -> Counted:
-    """The counter abstraction of ``network``; raises :class:`NotSymmetric` saying why not."""
-    found = groups(network)
+def counted(network: Network, least: int = 2) -> Counted:
+    """The counter abstraction of ``network`` over its groups of at least ``least`` agents;
+    raises :class:`NotSymmetric` saying why there is none."""
+    found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
-        raise NotSymmetric("no two components are copies of each other")
+        raise NotSymmetric(f"no {least} components are copies of each other")
     explored = [explore(network, group) for group in found]
     found = [group for group, _ in explored]
     translator = Translator(network, found)
@@ -747,23 +750,26 @@ def _rename_back(e: m.Expr, back: dict[Any, Any]) -> m.Expr:
     return e
 
 
-def synthesize_counted(network: Network, options: Any = None) -> Any:
-    """Synthesis by the counter abstraction where the network's agents are symmetric; the
-    monolithic method (saying why in ``details["symmetry"]``) where they are not."""
+MIN_AGENTS = 3  # a pair of copies (two bumpers, say) is synthesized monolithically: counting buys nothing
+
+
+def synthesize_counted(network: Network, options: Any = None, least: int = MIN_AGENTS) -> Any:
+    """Synthesis by the counter abstraction where the network has a group of at least ``least``
+    symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not."""
     import time
 
     from robosc.synthesis.explain import explain
     from robosc.synthesis.options import DEFAULT
     from robosc.synthesis.readable import readable
     from robosc.synthesis.result import EventGuard, SynthesisResult
-    from robosc.synthesis.symbolic import fixpoint, synthesize_symbolic
+    from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
 
     options = options or DEFAULT
     start = time.perf_counter()
     try:
-        fleet = counted(network)
+        fleet = counted(network, least)
     except NotSymmetric as reason:
-        result = synthesize_symbolic(network, options)
+        result = synthesize_monolithic(network, options)
         details = dict(result.details, symmetry=f"monolithic: {reason}")
         return SynthesisResult(
             result.network, result.method, result.ok, result.guards, result.reachable_states,

@@ -1,0 +1,229 @@
+"""Fleets: instances of a component, requirements over them, and synthesis by counting
+identical robots, checked against the monolithic and the explicit methods."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+from robosc.api import check_text, format_text, synthesize_model
+from robosc.language import model as m
+from robosc.language.render import render
+from robosc.plant import build_network
+from robosc.synthesis.explicit import synthesize_explicit
+from robosc.synthesis.options import SynthesisOptions
+from robosc.synthesis.symbolic import synthesize_monolithic
+from robosc.synthesis.symmetry import counted, synthesize_counted
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
+import families  # noqa: E402
+
+FLEET = """robot Fleet {
+    component bot[3] namespace "/fleet" initial idle, busy, idle {
+        incoming message go with type: none
+        outgoing message done with identifier: "finished", type: none
+        behaviour {
+            marked state idle { on request to go goto busy }
+            marked state busy { on response from done goto idle }
+        }
+    }
+    component Door {
+        incoming message open with type: none
+        behaviour { initial marked state closed { on request to open } }
+    }
+    for r in bot {
+        requirement r.go needs count(q in bot: q.busy) <= 1 and all(q in bot: q = r or !q.busy)
+    }
+    requirement bot1.go needs Door.closed
+}
+"""
+
+
+def test_instances_are_components_with_their_own_names_namespaces_and_start():
+    model = check_text(FLEET).model
+    assert model is not None
+    bots = model.groups["bot"]
+    assert [c.name for c in bots] == ["bot1", "bot2", "bot3"]
+    assert [c.index for c in bots] == [1, 2, 3]
+    assert [c.namespace for c in bots] == ["/fleet/bot1", "/fleet/bot2", "/fleet/bot3"]
+    assert [[c.name for c in b.communications] for b in bots][1] == ["bot2.go", "bot2.done"]
+    assert [[c.ros_name for c in b.communications] for b in bots][1] == ["/fleet/bot2/go", "/fleet/bot2/finished"]
+    assert [next(s.name for s in b.automaton.states if s.initial) for b in bots] == ["idle", "busy", "idle"]
+    assert model.component("Door").group is None
+
+
+def test_for_blocks_and_quantifiers_expand_per_instance():
+    model = check_text(FLEET).model
+    requirements = {r.communications[0].name: render(r.condition) for r in model.requirements}
+    assert requirements["bot2.go"] == "count(bot1.busy, bot2.busy, bot3.busy) <= 1 and !bot1.busy and !bot3.busy"
+    assert requirements["bot1.go"] == "Door.closed"  # the last one written for bot1
+    assert len(model.requirements) == 4
+
+
+def test_count_of_conditions_written_out():
+    text = FLEET.replace("requirement bot1.go needs Door.closed", "requirement open needs count(bot1.idle, Door.closed) >= 2")
+    model = check_text(text).model
+    condition = model.requirements[-1].condition
+    assert isinstance(condition.left, m.Count) and len(condition.left.terms) == 2
+
+
+def test_fleet_syntax_formats_and_reads_back():
+    formatted = format_text(FLEET)
+    assert 'component bot[3] namespace "/fleet" initial idle, busy, idle {' in formatted
+    assert "for r in bot {" in formatted
+    assert format_text(formatted) == formatted
+    assert check_text(formatted).model is not None
+
+
+@pytest.mark.parametrize("word", ["for", "in", "namespace", "all", "count"])
+def test_the_new_words_still_name_things(word: str):
+    """Models of the original tool may name a message, a state or a variable so."""
+    text = f"""robot R {{
+        component {word} {{
+            incoming message {word} with type: none
+            behaviour {{
+                variable {word}: boolean
+                initial marked state {word} {{ on request to {word} }}
+            }}
+        }}
+        requirement {word} needs {word}.{word}
+    }}"""
+    result = check_text(text)
+    assert result.model is not None, result.render()
+
+
+def test_a_group_is_not_one_component():
+    result = check_text(FLEET.replace("requirement bot1.go needs Door.closed", "requirement bot.go needs true"))
+    assert [d.code.value for d in result.diagnostics] == ["instances"]
+    assert (result.diagnostics[0].span.line, result.diagnostics[0].span.column) == (17, 17)
+
+
+@pytest.mark.parametrize("n", [2, 3])
+@pytest.mark.parametrize("family", ["ring", "warehouse"])
+def test_written_with_instances_a_fleet_means_what_its_copies_mean(family: str, n: int):
+    copied = synthesize_monolithic(build_network(check_text(families.FLEETS[family](n)).model))
+    instances = synthesize_monolithic(build_network(check_text(families.FLEETS[f"{family}_instances"](n)).model))
+    assert copied.ok and instances.ok
+    assert copied.reachable_states == instances.reachable_states
+    assert [g.added is None for g in copied.guards] == [g.added is None for g in instances.guards]
+
+
+def agree_with_monolithic(text: str, least: int = 2) -> tuple[object, object]:
+    """Counted and monolithic synthesis of ``text``: the same supervisor on every state the
+    monolithic one reaches (each event allowed in the same states)."""
+    network = build_network(check_text(text).model)
+    mono = synthesize_monolithic(network)
+    fleet = synthesize_counted(network, least=least)
+    assert fleet.method == "symmetric", fleet.details.get("symmetry")
+    assert mono.ok == fleet.ok
+    if not mono.ok:
+        return mono, fleet
+    fp = mono.details["fixpoint"]
+    enc = fp.enc
+    for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
+        assert mine.event is theirs.event
+        added = enc.boolean(theirs.added) if theirs.added is not None else enc.true
+        allowed = fp.enabled[mine.event] & fp.required[mine.event] & added
+        assert fp.reachable & ~allowed.equiv(fp.allowed[mine.event]) == enc.false, mine.event.name
+    return mono, fleet
+
+
+def counted_states(network, supervisor) -> int:
+    """The explicit supervisor's reachable states up to permuting each group's agents."""
+    fleet = counted(network)
+    seen = set()
+    for state in supervisor.controlled_states():
+        where = dict(zip(network.automata, state.locations, strict=True))
+        values = dict(zip(network.variables, state.values, strict=True))
+        key = []
+        in_groups = set()
+        for group in fleet.groups:
+            locals_ = sorted(
+                (repr([loc.name for loc in local[0]]), repr(local[1]))
+                for local in (
+                    (tuple(group.to_rep[id(a)][where[x]] for x in a.automata), tuple(values[v] for v in a.variables))
+                    for a in group.agents
+                )
+            )
+            key.append(tuple(locals_))
+            in_groups |= {x.name for a in group.agents for x in a.automata}
+        key.append(tuple(loc.name for a, loc in where.items() if a.name not in in_groups))
+        seen.add(tuple(key))
+    return len(seen)
+
+
+@pytest.mark.parametrize("n", [2, 3, 4])
+@pytest.mark.parametrize("family", ["ring", "ring_instances", "warehouse", "warehouse_instances"])
+def test_counting_robots_gives_the_monolithic_supervisor(family: str, n: int):
+    agree_with_monolithic(families.FLEETS[family](n))
+
+
+@pytest.mark.parametrize("family", ["ring_instances", "warehouse_instances"])
+def test_counted_states_are_the_explicit_states_up_to_order(family: str):
+    network = build_network(check_text(families.FLEETS[family](3)).model)
+    explicit = synthesize_explicit(network)
+    fleet = synthesize_counted(network, least=2)
+    assert fleet.reachable_states == counted_states(network, explicit.details["supervisor"])
+
+
+DEADLOCK = """robot Cell {
+    // three robots share three tools; a robot works with two, taken one at a time
+    component bot[3] {
+        incoming message take with type: none
+        incoming message work with type: none
+        incoming message put with type: none
+        behaviour {
+            initial marked state free { on request to take goto one }
+            state one { on request to take goto two }
+            state two { on request to work goto working }
+            state working { on request to put goto free }
+        }
+    }
+    for r in bot {
+        // a tool is left: tools held = robots holding one or two, plus those holding two
+        requirement r.take needs count(q in bot: !q.free) + count(q in bot: q.two or q.working) <= 2
+    }
+}
+"""
+
+
+def test_counting_finds_the_conditions_monolithic_synthesis_adds():
+    mono, fleet = agree_with_monolithic(DEADLOCK)
+    assert [g.added is not None for g in fleet.guards] == [g.added is not None for g in mono.guards]
+
+
+def test_counted_synthesis_agrees_with_explicit_synthesis_state_by_state():
+    network = build_network(check_text(DEADLOCK).model)
+    explicit = synthesize_explicit(network)
+    fleet = synthesize_counted(network, least=2)
+    supervisor = explicit.details["supervisor"]
+    for state in supervisor.controlled_states():
+        for event in network.events:
+            assert fleet.allows(event, state) == supervisor.allows(event, state), event.name
+
+
+def test_a_robot_treated_apart_is_synthesized_monolithically():
+    text = FLEET.replace("requirement bot1.go needs Door.closed", "requirement bot1.go needs bot2.idle")
+    result = synthesize_model(check_text(text).model, options=SynthesisOptions(fleet="counted"))
+    assert result.method == "symbolic"
+    assert "monolithic" in result.details["symmetry"]
+
+
+def test_the_default_counts_fleets_of_three_or_more():
+    model = check_text(families.ring_instances(3)).model
+    assert synthesize_model(model).method == "symmetric"
+    assert synthesize_model(check_text(families.ring_instances(2)).model).method == "symbolic"
+    assert synthesize_model(model, options=SynthesisOptions(fleet="monolithic")).method == "symbolic"
+
+
+def test_a_counted_guard_runs_in_the_generated_supervisor():
+    from robosc.api import supervisor_module
+
+    model = check_text(DEADLOCK).model
+    result = synthesize_model(model)
+    assert result.method == "symmetric" and any(g.added is not None for g in result.guards)
+    source = supervisor_module(result)
+    assert "sum((" in source
+    compile(source, "supervisor.py", "exec")
