@@ -1,15 +1,21 @@
 """Synthesis for fleets: how each method's cost grows with the number of robots.
 
-Families (benchmarks/families.py), written as today's language allows (a copied component per
-robot, a requirement per robot naming every other robot): ``ring`` — N robots on a one-way ring
-of 2N zones, a zone held by at most one robot; ``warehouse`` — a one-way loop of 2N+2 aisle
-zones with a door the robots pass only while it is open and one charger for one robot. Each run is a process of its own with a
-time limit and an address-space limit, so that a method that blows up is cut off and the
-table still prints; figures that do not depend on the machine (peak live BDD nodes, image and
-preimage computations) are printed next to the wall time and the peak memory.
+Families (benchmarks/families.py): ``ring`` — N robots on a one-way ring of 2N zones, a zone
+held by at most one robot; ``warehouse`` — a one-way loop of 2N+2 aisle zones with a door the
+robots pass only while it is open and one charger for one robot. Each is written as the
+original's users write fleets (a copied component per robot, a requirement per robot naming
+every other robot) and, as ``ring_instances`` / ``warehouse_instances``, with instances.
 
-Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,6,7,8,9]
-          [--timeout 150] [--memory-gb 2]
+Methods (``SynthesisOptions.fleet``): ``counted`` (the default: robots that are copies counted
+per state) and ``monolithic`` (the reference). Each run is a process of its own with a time
+limit and an address-space limit, so that a method that blows up is cut off and the table
+still prints; figures that do not depend on the machine (peak live BDD nodes, image and
+preimage computations) are printed next to the wall time and the peak memory. Where both
+finish, a third run asserts that they found the same supervisor (each event allowed in the
+same states, over the states the monolithic supervisor reaches): the last column.
+
+Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,8,16,32]
+          [--methods counted,monolithic] [--timeout 600] [--memory-gb 2]
 """
 
 from __future__ import annotations
@@ -29,12 +35,29 @@ import json, resource, sys, time
 sys.path.insert(0, sys.argv[1])
 from families import FLEETS
 from robosc.api import check_text, synthesize_model
+from robosc.synthesis.options import SynthesisOptions
 family, n, method = sys.argv[2], int(sys.argv[3]), sys.argv[4]
 text = FLEETS[family](n)
 start = time.perf_counter()
 model = check_text(text).model
 checked = time.perf_counter()
-result = synthesize_model(model, method)
+if method == "check":
+    from robosc.plant import build_network
+    from robosc.synthesis.symbolic import synthesize_monolithic
+    from robosc.synthesis.symmetry import synthesize_counted
+    network = build_network(model)
+    mono, fleet = synthesize_monolithic(network), synthesize_counted(network, least=2)
+    assert fleet.method == "symmetric", fleet.details.get("symmetry")
+    assert mono.ok == fleet.ok
+    fp = mono.details["fixpoint"]
+    enc = fp.enc
+    for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
+        added = enc.boolean(theirs.added) if theirs.added is not None else enc.true
+        allowed = fp.enabled[mine.event] & fp.required[mine.event] & added
+        assert fp.reachable & ~allowed.equiv(fp.allowed[mine.event]) == enc.false, mine.event.name
+    print(json.dumps({"same": True}))
+    raise SystemExit(0)
+result = synthesize_model(model, options=SynthesisOptions(fleet=method))
 done = time.perf_counter()
 effort = result.details.get("effort") or {}
 print(json.dumps({
@@ -70,27 +93,37 @@ def measure(family: str, n: int, method: str, timeout: float, memory_gb: float) 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sizes", default="2,4,6,7,8,9")
+    parser.add_argument("--sizes", default="2,4,8,16,32")
     parser.add_argument("--families", default="ring,warehouse")
-    parser.add_argument("--methods", default="symbolic")
-    parser.add_argument("--timeout", type=float, default=150.0)
+    parser.add_argument("--methods", default="counted,monolithic")
+    parser.add_argument("--timeout", type=float, default=600.0)
     parser.add_argument("--memory-gb", type=float, default=2.0)
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes.split(",")]
     print(f"limits: {args.timeout:g} s and {args.memory_gb:g} GB of address space per run\n")
-    print("| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages | controlled states |")
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages "
+        "| controlled states | same supervisor |"
+    )
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    methods = args.methods.split(",")
     for family in args.families.split(","):
         for n in sizes:
-            for method in args.methods.split(","):
+            finished = 0
+            for method in methods:
                 f = measure(family, n, method, args.timeout, args.memory_gb)
                 if "failed" in f:
-                    print(f"| {family} | {n} | {method} | | | {f['failed']} | | | | | |", flush=True)
+                    print(f"| {family} | {n} | {method} | | | {f['failed']} | | | | | | |", flush=True)
                     continue
+                finished += 1
+                same = ""
+                if finished == 2 and set(methods) >= {"counted", "monolithic"} and n >= 2:
+                    check = measure(family, n, "check", args.timeout, args.memory_gb)
+                    same = "yes (asserted)" if check.get("same") else f"NO: {check.get('failed')}"
                 print(
                     f"| {family} | {n} | {method} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
                     f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
-                    f"{f.get('preimages', '-')} | {f['states']:,} |",
+                    f"{f.get('preimages', '-')} | {f['states']:,} | {same} |",
                     flush=True,
                 )
 

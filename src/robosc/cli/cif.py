@@ -16,10 +16,13 @@ from robosc.cli.common import EXIT_OK, exit_with, include_option, input_problem,
 def cif(file: str, output: str, include: tuple[str, ...]) -> None:
     """Write the model's plants and requirements as CIF 3 text (for Eclipse ESCET)."""
     model = load_robot(file, include, "CIF export")
-    from robosc.codegen.cif import to_cif  # jinja2 only when this command runs
+    from robosc.codegen.cif import NameClash, to_cif  # jinja2 only when this command runs
     from robosc.plant import build_network
 
-    text = to_cif(build_network(model), Path(file).name)
+    try:
+        text = to_cif(build_network(model), Path(file).name)
+    except NameClash as exc:
+        raise input_problem(f"{file}: cannot write CIF: {exc}") from None
     try:
         Path(output).write_text(text, encoding="utf-8")
     except OSError as exc:

@@ -127,6 +127,10 @@ CIF_KEYWORDS = frozenset(
 
 
 def name(text: str) -> str:
+    """A model name in CIF: keywords escaped; an instance's communication ``bot1.go`` (a CIF
+    name has no dot) as ``bot1__go`` (RoboSC names the model's own ``__`` nowhere a ROS name
+    can come from: a clash is refused when the network is written)."""
+    text = text.replace(".", "__")
     return f"${text}" if text in CIF_KEYWORDS else text
 
 
@@ -176,6 +180,10 @@ def expression(e: m.Expr) -> str:
     """A model expression in CIF syntax (fully parenthesised: CIF's precedence differs)."""
     if isinstance(e, m.Binary):
         return f"({expression(e.left)} {_OPS[e.op]} {expression(e.right)})"
+    if isinstance(e, m.Count):  # how many hold: CIF adds up if-expressions
+        if not e.terms:
+            return "0"
+        return "(" + " + ".join(f"(if {expression(t)}: 1 else 0 end)" for t in e.terms) + ")"
     if isinstance(e, m.Unary):
         return f"(not {expression(e.operand)})" if e.op == "!" else f"(-{expression(e.operand)})"
     if isinstance(e, m.Literal):
@@ -228,8 +236,18 @@ def _edge(edge: Edge, names: _Names, automaton: Automaton) -> str:
     return text + ";"
 
 
+class NameClash(ValueError):
+    """Two names of the model are one name in CIF (``bot1.go`` and ``bot1__go``)."""
+
+
 def to_cif(network: Network, source: str = "") -> str:
-    """The network as the text of a CIF 3 specification."""
+    """The network as the text of a CIF 3 specification (raises :class:`NameClash` when two
+    of the model's names would be one in CIF)."""
+    seen: dict[str, str] = {}
+    for automaton in network.automata:
+        other = seen.setdefault(name(automaton.name), automaton.name)
+        if other != automaton.name:
+            raise NameClash(f"'{other}' and '{automaton.name}' would both be '{name(other)}' in CIF: rename one")
     names = _Names(network)
     enums = [
         (name(t.name), ", ".join(name(v.name) for v in t.values))
