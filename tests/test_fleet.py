@@ -18,7 +18,7 @@ from robosc.synthesis.symbolic import synthesize_monolithic
 from robosc.synthesis.symmetry import counted, synthesize_counted
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
-import families  # noqa: E402
+import families
 
 FLEET = """robot Fleet {
     component bot[3] namespace "/fleet" initial idle, busy, idle {

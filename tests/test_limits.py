@@ -162,11 +162,15 @@ def test_more_states_than_a_double_counts(tmp_path: Path) -> None:
             f"initial marked state a {{ on request to m{i} goto b }} marked state b {{ on request to m{i} goto a }} }} }}"
         )
     (tmp_path / "many.rscd").write_text("\n".join(lines) + "\n}\n")
-    result = robosc("synthesize", "--json", "many.rscd", cwd=tmp_path)
+    result = robosc("synthesize", "--json", "--fleet", "monolithic", "many.rscd", cwd=tmp_path)
     assert result.returncode == 0, result.stderr[-2000:]
     import json
 
     assert json.loads(result.stdout)["reachable_states"] == 2**1024
+    # the 1024 components are copies: counted, a state is how many of them are in b
+    result = robosc("synthesize", "--json", "many.rscd", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert json.loads(result.stdout)["reachable_states"] == 1025
 
 
 def test_two_libraries_with_one_name_are_an_error(tmp_path: Path) -> None:

@@ -482,3 +482,74 @@ async def test_renamed_communication_keeps_its_ros_name(client: LanguageClient, 
     result = check_text(after, str(path))
     assert result.ok and result.model is not None
     assert result.model.components[0].communications[0].ros_name == "beep"
+
+
+FLEET = (
+    "robot Cell {\n"
+    "    component bot[3] {\n"
+    "        incoming message take with type: none\n"
+    "        behaviour {\n"
+    "            initial marked state free { on request to take goto busy }\n"
+    "            marked state busy { on request to take goto free }\n"
+    "        }\n"
+    "    }\n"
+    "    for r in bot {\n"
+    "        requirement r.take needs count(q in bot: q.busy) <= 1\n"
+    "    }\n"
+    "    requirement bot2.take needs bot1.free\n"
+    "}\n"
+)
+
+
+@pytest.mark.asyncio
+async def test_a_fleet_in_the_editor(client: LanguageClient, tmp_path: Path) -> None:
+    """Completion, hover and rename know instances: bot2.take is the component's `take`."""
+    from pygls.exceptions import JsonRpcException
+
+    from robosc.api import check_text
+
+    path = tmp_path / "cell.rscd"
+    path.write_text(FLEET)
+    uri = open_document(client, path, FLEET)
+    assert await diagnostics_of(client, uri) == []
+
+    async def complete(text: str, at: lsp.Position) -> list[str]:
+        change(client, uri, text, 2)
+        await diagnostics_of(client, uri)
+        found = await client.text_document_completion_async(
+            lsp.CompletionParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=at)
+        )
+        assert isinstance(found, lsp.CompletionList)
+        return [item.label for item in found.items]
+
+    # after an instance variable: the instance's communications, states
+    typed = FLEET.replace("needs bot1.free\n", "needs bot1.free and r.\n")
+    line = typed.splitlines().index("    requirement bot2.take needs bot1.free and r.")
+    got = await complete(typed.replace("    requirement bot2", "    for r in bot {} requirement bot2"), lsp.Position(line=line, character=len("    for r in bot {} requirement bot2.take needs bot1.free and r.")))
+    assert got == ["take", "free", "busy"]
+    # after `in`: the groups
+    typed = FLEET.replace("for r in bot {", "for r in  {")
+    assert await complete(typed, lsp.Position(line=8, character=len("    for r in "))) == ["bot"]
+
+    change(client, uri, FLEET, 3)
+    await diagnostics_of(client, uri)
+    hovered = await client.text_document_hover_async(
+        lsp.HoverParams(text_document=lsp.TextDocumentIdentifier(uri=uri), position=where(path, "message take", 0, 9))
+    )
+    assert hovered is not None
+    text = hovered.contents.value  # type: ignore[union-attr]
+    assert "**incoming message `take`** of each of `bot1` .. `bot3`: `none`, ROS name `bot1/take`" in text
+    assert "used 4 times: line 5, 6, 10, 12" in text  # once per place, not once per instance
+    assert text.count("**incoming message") == 1
+    # renaming the declaration renames it in every instance's use, and keeps the ROS name
+    after = apply_edit(FLEET, await rename(client, uri, where(path, "message take", 0, 9), "grab"), uri)
+    assert "r.grab needs" in after and "requirement bot2.grab needs" in after and "to grab goto" in after
+    assert 'incoming message grab with identifier: "take", type: none' in after
+    result = check_text(after, str(path))
+    assert result.model is not None and result.model.communication("bot2.grab").ros_name == "bot2/take"
+    # a state used through an instance (bot1.free) renames the component's state
+    after = apply_edit(FLEET, await rename(client, uri, where(path, "bot1.free", 0, 6), "idle"), uri)
+    assert "initial marked state idle {" in after and "bot1.idle" in after and check_text(after, str(path)).ok
+    # an instance is named by its group: not renamed alone
+    with pytest.raises(JsonRpcException, match="instance 1 of 'bot'"):
+        await rename(client, uri, where(path, "bot1.free", 0, 1), "first")

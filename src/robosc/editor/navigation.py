@@ -129,7 +129,8 @@ class Index:
         target = self.target_at(position)
         if target is None:
             return []
-        found = [self.location(span) for span, t in self.references if same(t, target)]
+        spans = dict.fromkeys(span for span, t in self.references if same(t, target))  # instances share theirs
+        found = [self.location(span) for span in spans]
         if declaration:
             found.insert(0, self.location(self.name_span(target) or target.span))
         return found

@@ -143,7 +143,8 @@ def synthesize_symbolic(network: Network, options: SynthesisOptions = DEFAULT) -
     if options.fleet == "counted":
         from robosc.synthesis.symmetry import synthesize_counted
 
-        return synthesize_counted(network, options)
+        result: SynthesisResult = synthesize_counted(network, options)
+        return result
     return synthesize_monolithic(network, options)
 
 

@@ -23,15 +23,18 @@ from __future__ import annotations
 import itertools
 import re
 from collections.abc import Iterator, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robosc.language import model as m
 from robosc.language.render import render
-from robosc.language.resolver.instances import fold
+from robosc.language.simplify import fold
 from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, Network, Requirement, Update
 from robosc.record import field, record
 from robosc.synthesis.evaluate import Undefined, evaluate
+
+if TYPE_CHECKING:
+    from robosc.synthesis.result import SynthesisResult
 
 LocalState = tuple[tuple[m.State, ...], tuple[object, ...]]  # locations of the agent's automata, its values
 
@@ -191,7 +194,8 @@ def _moves_from(network: Network, agent: Agent, state: LocalState) -> Iterator[t
                 break
             options.append(edges)
         else:
-            for chosen in itertools.product(*[o or [None] for o in options]):
+            choices: list[list[Edge | None]] = [list(o) if o else [None] for o in options]
+            for chosen in itertools.product(*choices):
                 targets = tuple(
                     edge.target if edge is not None else loc for edge, loc in zip(chosen, locations, strict=True)
                 )
@@ -535,7 +539,7 @@ def counted(network: Network, least: int = 2) -> Counted:
     for automaton in network.automata:  # shared: kept, their guards and updates read through the counters
         if automaton.name in in_agents:
             continue
-        edges = tuple(
+        shared = tuple(
             Edge(
                 e.source,
                 e.target,
@@ -545,7 +549,17 @@ def counted(network: Network, least: int = 2) -> Counted:
             )
             for e in automaton.edges
         )
-        automata.append(Automaton(automaton.name, automaton.kind, automaton.locations, automaton.initial, edges, automaton.alphabet, automaton.component))
+        automata.append(
+            Automaton(
+                automaton.name,
+                automaton.kind,
+                automaton.locations,
+                automaton.initial,
+                shared,
+                automaton.alphabet,
+                automaton.component,
+            )
+        )
     events = [e for e in network.events if e not in agent_events]
     requirements = [
         Requirement(r.event, translator.template(r.condition, None), r.description, r.origin)
@@ -559,7 +573,7 @@ def counted(network: Network, least: int = 2) -> Counted:
         group = next(g for g in found if g.name == group.name)
         _check_requirements(network, translator, group)
         location = m.State("fleet", f"#{group.name}", True, True, NO_SPAN)
-        edges = []
+        edges: list[Edge] = []
         templates: dict[int, m.Expr] = {}
         for move in group_moves:
             counter = group.counters[move.source]
@@ -753,7 +767,7 @@ def _rename_back(e: m.Expr, back: dict[Any, Any]) -> m.Expr:
 MIN_AGENTS = 3  # a pair of copies (two bumpers, say) is synthesized monolithically: counting buys nothing
 
 
-def synthesize_counted(network: Network, options: Any = None, least: int = MIN_AGENTS) -> Any:
+def synthesize_counted(network: Network, options: Any = None, least: int = MIN_AGENTS) -> SynthesisResult:
     """Synthesis by the counter abstraction where the network has a group of at least ``least``
     symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not."""
     import time
@@ -770,19 +784,25 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         fleet = counted(network, least)
     except NotSymmetric as reason:
         result = synthesize_monolithic(network, options)
-        details = dict(result.details, symmetry=f"monolithic: {reason}")
         return SynthesisResult(
-            result.network, result.method, result.ok, result.guards, result.reachable_states,
-            time.perf_counter() - start, result.explanation, details,
+            result.network,
+            result.method,
+            result.ok,
+            result.guards,
+            result.reachable_states,
+            time.perf_counter() - start,
+            result.explanation,
+            dict(result.details, symmetry=f"monolithic: {reason}"),
         )
     fp = fixpoint(fleet.network, options)
     enc = fp.enc
     described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
+    supervisor = CountedSupervisor(network, fleet, fp)
     details: dict[str, Any] = {
         "counted": fp,
         "effort": enc.effort(),
         "symmetry": f"counted ({described})",
-        "supervisor": CountedSupervisor(network, fleet, fp),
+        "supervisor": supervisor,
     }
     if (fp.initial & fp.bad) != enc.false:
         return SynthesisResult(
@@ -792,12 +812,12 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
     by_rep: dict[Event, list[Event]] = {}
     for counted_event, (_, move) in fleet.moves.items():
         by_rep.setdefault(move.event, []).append(counted_event)
-    supervisor: CountedSupervisor = details["supervisor"]
     guards = []
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         owner = supervisor.agent_of_event.get(event)
+        pairs: list[tuple[Event, int | None]]
         if owner is None:
             pairs = [(event, None)]
         else:
@@ -811,8 +831,8 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
             if (care & ~beyond) == enc.false:
                 continue
             added = _lift(readable(enc, beyond, care), fleet)
-            if source is not None:
-                group, agent = owner  # type: ignore[misc]
+            if source is not None and owner is not None:
+                group, agent = owner
                 back = {v: k for k, v in group.to_rep[id(agent)].items()}
                 here = _rename_back(translator.at(group, source), back)
                 added = m.Binary("=>", here, added, m.BOOLEAN, NO_SPAN)

@@ -6,6 +6,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 from robosc.language import model as m
+from robosc.language import simplify
 from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
@@ -127,10 +128,10 @@ class ExpressionResolver:
             if not t.is_boolean(term.type):
                 self.reporter.error(term.span, f"the conditions of '{kind}' are boolean, not {term.type}", Code.TYPES)
                 return m.Invalid(syntax.span)
-        terms = [inst.fold(term) for term in terms]
+        terms = [simplify.fold(term) for term in terms]
         if kind == "count":
             return m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
-        return inst.join("and" if kind == "all" else "or", terms, syntax.span)
+        return simplify.join("and" if kind == "all" else "or", terms, syntax.span)
 
     def _same_instance(self, syntax: s.Binary) -> m.Expr | None:
         """``q = r`` / ``q != r`` between instance variables: decided here, or None when ``syntax``
@@ -141,7 +142,7 @@ class ExpressionResolver:
         ):
             return None
         left, right = (self.bound[e.head.text] for e in sides)  # type: ignore[union-attr]
-        return inst.literal((left == right) == (syntax.op == "="), syntax.span)
+        return simplify.literal((left == right) == (syntax.op == "="), syntax.span)
 
     # -- entry points --------------------------------------------------------------
     def condition(self, syntax: s.Expr, context: ExprContext, what: str) -> m.Expr:

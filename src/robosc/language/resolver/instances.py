@@ -11,14 +11,10 @@ away, so the expanded model reads as if written out by hand.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
-from robosc.language import model as m
 from robosc.language import syntax as s
 from robosc.language.checks.topic_names import problem as ros_name_problem
 from robosc.language.codes import Code
 from robosc.language.resolver.reporter import Reporter
-from robosc.language.source import Span
 from robosc.record import record
 
 MAX_INSTANCES = 1000  # instances of one component
@@ -108,75 +104,3 @@ def ros_identifier(
     base = identifier.lstrip("/~") if identifier is not None else local
     namespace = instance.namespace.rstrip("/")
     return name, f"{namespace}/{base}" if namespace else f"/{base}"
-
-
-# ---- expanding expressions --------------------------------------------------------
-
-
-def literal(value: bool, span: Span) -> m.Literal:
-    return m.Literal(value, m.BOOLEAN, span)
-
-
-def _bool(e: m.Expr) -> bool | None:
-    return e.value if isinstance(e, m.Literal) and isinstance(e.value, bool) else None
-
-
-def fold(e: m.Expr) -> m.Expr:
-    """``e`` with the boolean constants that deciding ``q != r`` left folded away."""
-    if isinstance(e, m.Unary) and e.op == "!":
-        operand = fold(e.operand)
-        value = _bool(operand)
-        if value is not None:
-            return literal(not value, e.span)
-        return e if operand is e.operand else m.Unary("!", operand, e.type, e.span)
-    if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
-        left, right = fold(e.left), fold(e.right)
-        a, b = _bool(left), _bool(right)
-        if e.op == "and":
-            if a is False or b is False:
-                return literal(False, e.span)
-            if a is True:
-                return right
-            if b is True:
-                return left
-        elif e.op == "or":
-            if a is True or b is True:
-                return literal(True, e.span)
-            if a is False:
-                return right
-            if b is False:
-                return left
-        else:
-            if a is False or b is True:
-                return literal(True, e.span)
-            if a is True:
-                return right
-            if b is False:
-                return fold(m.Unary("!", left, m.BOOLEAN, e.span))
-        if left is e.left and right is e.right:
-            return e
-        return m.Binary(e.op, left, right, e.type, e.span)
-    return e
-
-
-def join(op: str, terms: Sequence[m.Expr], span: Span) -> m.Expr:
-    """The terms joined by ``and`` / ``or`` as a balanced tree (later stages recurse over
-    expressions: a fleet's hundred terms nest 7 deep, not 100); constants folded away."""
-    unit = op == "and"
-    kept: list[m.Expr] = []
-    for term in terms:
-        value = _bool(term)
-        if value is None:
-            kept.append(term)
-        elif value is not unit:
-            return literal(not unit, span)
-    if not kept:
-        return literal(unit, span)
-
-    def build(parts: Sequence[m.Expr]) -> m.Expr:
-        if len(parts) == 1:
-            return parts[0]
-        middle = len(parts) // 2
-        return m.Binary(op, build(parts[:middle]), build(parts[middle:]), m.BOOLEAN, span)
-
-    return build(kept)
