@@ -89,3 +89,28 @@ def test_shelf_picker_without_unload_recovery_points_at_the_unhandled_error():
     assert why.consequence.reason.endswith(
         "(Tray stays in emptying (waits for unload.u_response, which cannot happen here))"
     )
+
+
+def test_warehouse_fleet_is_set_in_one_line_and_synthesis_lets_one_robot_into_the_aisle():
+    """examples/warehouse.rscd: the fleet's size is the count of one component; two robots in
+    the narrow aisle can block each other in front of the shelf, so synthesis lets a robot in
+    only while every other one is at the depot or charging, whatever the size."""
+    from robosc.api import check_text, synthesize_model
+    from robosc.synthesis.options import SynthesisOptions
+
+    text = (EXAMPLES / "warehouse.rscd").read_text()
+    assert text.count("component bot[3]") == 1
+    for n in (3, 4):
+        model = check_text(text.replace("component bot[3]", f"component bot[{n}]")).model
+        assert [c.name for c in model.groups["bot"]] == [f"bot{i}" for i in range(1, n + 1)]
+        counted = synthesize_model(model)
+        mono = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))
+        assert counted.ok and mono.ok and counted.method == "symmetric"
+        assert [g.event.name for g in counted.added_guards] == [f"bot{i}.go" for i in range(1, n + 1)]
+        assert [g.event.name for g in mono.added_guards] == [f"bot{i}.go" for i in range(1, n + 1)]
+        # the door alone is never restricted further; bot1 may enter only when all others are home
+        for result in (counted, mono):
+            assert result.allows("bot1.go", result.state({"Door": "open"}))
+            assert not result.allows("bot1.go", result.state({"Door": "open", "bot2": "out2"}))
+            assert result.allows("bot1.go", result.state({"Door": "open", "bot2": "charging"}))
+            assert not result.allows("bot1.go", result.state({"Door": "closed"}))

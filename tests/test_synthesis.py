@@ -478,12 +478,13 @@ def test_conditions_kept_apart_from_the_relations_give_the_same_supervisor(monke
     method confirms."""
     import families
     from robosc.synthesis import encoding
+    from robosc.synthesis.options import SynthesisOptions
 
     model = load(getattr(families, family)(3))
     results = []
     for threshold in (0, 10**9):  # every condition kept apart; every condition conjoined
         monkeypatch.setattr(encoding, "SMALL_GUARD", threshold)
-        result = synthesize_model(model)
+        result = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))  # the fleet's whole state
         results.append((result.reachable_states, [(g.event.name, render(g.added) if g.added else None) for g in result.guards]))
     assert results[0] == results[1]
     explicit = synthesize_explicit(build_network(model))

@@ -685,11 +685,10 @@ class CountedSupervisor:
         fleet, enc = self.fleet, self.fp.enc
         where = dict(zip(self.network.automata, state.locations, strict=True))
         values = dict(zip(self.network.variables, state.values, strict=True))
-        locations = {a: where[a] if a.name in {x.name for x in self.network.automata} else a.initial for a in fleet.network.automata}
-        by_name = {a.name: a for a in self.network.automata}
-        for automaton in fleet.network.automata:
-            if automaton.name in by_name:
-                locations[automaton] = where[by_name[automaton.name]]
+        by_name = {a.name: a for a in self.network.automata}  # the counted network rebuilds the shared ones
+        locations = {
+            a: where[by_name[a.name]] if a.name in by_name else a.initial for a in fleet.network.automata
+        }
         counted_values = {v: values[v] for v in fleet.network.variables if v in values}
         for group in fleet.groups:
             counts = [0] * len(group.local)
