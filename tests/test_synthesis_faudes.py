@@ -2,10 +2,10 @@
 synthesis on models without variables and guards.
 
 The plant is the parallel composition of the network's automata. Each requirement
-"e only where C" whose condition speaks of one component becomes a specification
-automaton: a copy of that component in which e is possible only in the locations
-where C holds. The supervisor libFAUDES computes must then have exactly the states
-and transitions of robosc's controlled system.
+"e only where C" becomes a specification automaton: a copy of the components C speaks of
+(their product, for a fleet's requirement over several robots) in which e is possible only
+in the locations where C holds. The supervisor libFAUDES computes must then have exactly the
+states and transitions of robosc's controlled system.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from __future__ import annotations
 import contextlib
 import io
 
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 
 from random_models import robots
@@ -58,8 +59,51 @@ def _deterministic(network: Network) -> bool:
     return True
 
 
+def _product_spec(network: Network, requirement, owners: list[Automaton], alphabet: faudes.EventSet) -> faudes.Generator:
+    """The product of ``owners`` (deterministic), ``requirement.event`` only where its condition holds."""
+    g = faudes.Generator()
+    events = {e for a in owners for e in a.alphabet} | {requirement.event}
+    for e in events:
+        g.InsEvent(_name(e.name))
+
+    def label(state: tuple) -> str:
+        return "_".join(loc.name for loc in state)
+
+    start = tuple(a.initial for a in owners)
+    g.SetMarkedState(g.InsInitState(label(start)))
+    todo, seen = [start], {start}
+    while todo:
+        state = todo.pop()
+        holds = bool(evaluate(requirement.condition, set(state), {}))
+        for e in events:
+            if e is requirement.event and not holds:
+                continue
+            target = []
+            for a, loc in zip(owners, state, strict=True):
+                if e not in a.alphabet:
+                    target.append(loc)
+                    continue
+                edge = next((x for x in a.edges if x.source is loc and x.event is e), None)
+                if edge is None:
+                    break
+                target.append(edge.target)
+            else:
+                after = tuple(target)
+                if after not in seen:
+                    seen.add(after)
+                    todo.append(after)
+                    g.SetMarkedState(g.InsState(label(after)))
+                g.SetTransition(label(state), _name(e.name), label(after))
+    faudes.InvProject(g, alphabet)
+    return g
+
+
 def _spec(network: Network, requirement, alphabet: faudes.EventSet) -> faudes.Generator | None:
     owners = {n.state.owner for n in m.walk(requirement.condition) if isinstance(n, m.StateRef)}
+    if any(isinstance(n, m.VariableRef) for n in m.walk(requirement.condition)):
+        return None
+    if len(owners) > 1:
+        return _product_spec(network, requirement, [a for a in network.automata if a.name in owners], alphabet)
     if len(owners) != 1:
         return None
     automaton = next(a for a in network.automata if a.name in owners)
@@ -141,3 +185,26 @@ def test_random_models_match_libfaudes(text: str) -> None:
     assert symbolic.ok == (expected[0] > 0), text
     assert robosc_supervisor(network) == expected, text
     assert symbolic.reachable_states == expected[0], text
+
+
+@pytest.mark.parametrize(
+    ("family", "n"), [("ring_instances", 2), ("ring_instances", 3), ("ring_instances", 4), ("warehouse_instances", 2), ("warehouse_instances", 3), ("ring", 3)]
+)
+def test_fleets_match_libfaudes(family: str, n: int) -> None:
+    """Fleets written with instances (and one copied), requirements over every robot: the
+    explicit and the monolithic supervisors are libFAUDES's; the counted one allows the same
+    events in every state libFAUDES's reaches."""
+    import families
+    from robosc.synthesis.symbolic import synthesize_monolithic
+    from robosc.synthesis.symmetry import synthesize_counted
+
+    network = build_network(check_text(families.FLEETS[family](n)).model)
+    expected = faudes_supervisor(network)
+    assert expected is not None and expected[0] > 0
+    assert robosc_supervisor(network) == expected
+    assert synthesize_monolithic(network).reachable_states == expected[0]
+    fleet = synthesize_counted(network, least=2)
+    explicit = synthesize_explicit(network).details["supervisor"]
+    assert fleet.method == "symmetric"
+    for state in explicit.controlled_states():
+        assert [fleet.allows(e, state) for e in network.events] == [explicit.allows(e, state) for e in network.events]

@@ -679,6 +679,11 @@ class CountedSupervisor:
             for agent in group.agents:
                 for event in agent.events:
                     self.agent_of_event[event] = (group, agent)
+        # (group, the representative's event, local state) -> the counted events of that move
+        self.counted_events: dict[tuple[str, Event, int], list[Event]] = {}
+        for counted_event, (group, move) in fleet.moves.items():
+            self.counted_events.setdefault((group.name, move.event, move.source), []).append(counted_event)
+        self.index = {group.name: {s: i for i, s in enumerate(group.local)} for group in fleet.groups}
 
     def _state(self, state: Any) -> Any:
         """The counted state of an original network state."""
@@ -692,7 +697,7 @@ class CountedSupervisor:
         counted_values = {v: values[v] for v in fleet.network.variables if v in values}
         for group in fleet.groups:
             counts = [0] * len(group.local)
-            index = {s: i for i, s in enumerate(group.local)}
+            index = self.index[group.name]
             for agent in group.agents:
                 counts[index[self.local(group, agent, where, values)]] += 1
             counted_values.update(zip(group.counters, counts, strict=True))
@@ -714,13 +719,12 @@ class CountedSupervisor:
         group, agent = owner
         where = dict(zip(self.network.automata, state.locations, strict=True))
         values = dict(zip(self.network.variables, state.values, strict=True))
-        source = {s: i for i, s in enumerate(group.local)}[self.local(group, agent, where, values)]
+        source = self.index[group.name][self.local(group, agent, where, values)]
         rep_event = group.to_rep[id(agent)][event]
-        for counted_event, (g, move) in self.fleet.moves.items():
-            if g is group and move.event is rep_event and move.source == source:
-                bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
-                if (here & bdd) != enc.false:
-                    return True
+        for counted_event in self.counted_events.get((group.name, rep_event, source), ()):
+            bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
+            if (here & bdd) != enc.false:
+                return True
         return False
 
     def controlled(self, state: Any) -> bool:
