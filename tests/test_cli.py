@@ -22,7 +22,7 @@ def run(*args: str) -> subprocess.CompletedProcess[str]:
 def test_check_examples_exit_zero():
     result = run("check", *(str(p) for p in sorted(EXAMPLES.glob("*.rscd"))))
     assert result.returncode == 0, result.stderr
-    assert result.stdout.count(": ok") == 5
+    assert result.stdout.count(": ok") == 6
 
 
 def test_check_model_with_errors_exits_one(tmp_path: Path):
