@@ -4,7 +4,7 @@ through counters leaves (synthesis for fleets)."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from robosc.language import model as m
 from robosc.language.source import Span
@@ -77,3 +77,18 @@ def join(op: str, terms: Sequence[m.Expr], span: Span) -> m.Expr:
         return m.Binary(op, build(parts[:middle]), build(parts[middle:]), m.BOOLEAN, span)
 
     return build(kept)
+
+
+def replace(e: m.Expr, leaf: Callable[[m.Expr], m.Expr | None]) -> m.Expr:
+    """``e`` with each node that ``leaf`` answers (not None) replaced by its answer, the
+    operators around them rebuilt."""
+    found = leaf(e)
+    if found is not None:
+        return found
+    if isinstance(e, m.Unary):
+        return m.Unary(e.op, replace(e.operand, leaf), e.type, e.span)
+    if isinstance(e, m.Binary):
+        return m.Binary(e.op, replace(e.left, leaf), replace(e.right, leaf), e.type, e.span)
+    if isinstance(e, m.Count):
+        return m.Count(e.group, tuple(replace(t, leaf) for t in e.terms), e.type, e.span)
+    return e

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 from robosc.language import model as m
 from robosc.language.render import render
-from robosc.language.simplify import fold
+from robosc.language.simplify import fold, replace
 from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, Network, Requirement, Update
 from robosc.record import field, record
@@ -340,20 +340,7 @@ class Translator:
         if agent is group.rep:
             return e
 
-        def go(node: m.Expr) -> m.Expr:
-            if isinstance(node, m.StateRef) and node.state in mapping:
-                return m.StateRef(mapping[node.state], node.span)
-            if isinstance(node, m.VariableRef) and node.variable in mapping:
-                return m.VariableRef(mapping[node.variable], node.steps, node.type, node.span)
-            if isinstance(node, m.Unary):
-                return m.Unary(node.op, go(node.operand), node.type, node.span)
-            if isinstance(node, m.Binary):
-                return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
-            if isinstance(node, m.Count):
-                return m.Count(node.group, tuple(go(t) for t in node.terms), node.type, node.span)
-            return node
-
-        return go(e)
+        return _rename_back(e, mapping)
 
     def at(self, group: Group, index: int) -> m.Expr:
         """The representative is in local state ``index``."""
@@ -488,20 +475,14 @@ class Translator:
         rep_locations = {loc for a in group.rep.automata for loc in a.locations}
         known = dict(zip(group.rep.variables, values, strict=True))
 
-        def go(node: m.Expr) -> m.Expr:
+        def known_here(node: m.Expr) -> m.Expr | None:
             if isinstance(node, m.StateRef) and node.state in rep_locations:
                 return TRUE if node.state in here else FALSE
             if isinstance(node, m.VariableRef) and node.variable in known and not node.steps:
                 return _value(node.variable, known[node.variable])
-            if isinstance(node, m.Unary):
-                return m.Unary(node.op, go(node.operand), node.type, node.span)
-            if isinstance(node, m.Binary):
-                return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
-            if isinstance(node, m.Count):
-                return m.Count(node.group, tuple(go(t) for t in node.terms), node.type, node.span)
-            return node
+            return None
 
-        return fold(go(template))
+        return fold(replace(template, known_here))
 
 
 def _join(op: str, parts: Sequence[m.Expr]) -> m.Expr:
@@ -739,32 +720,29 @@ def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
 
     def agent_at(group: Group, agent: Agent, index: int) -> m.Expr:
         back = {v: k for k, v in group.to_rep[id(agent)].items()}
-        return translator.rename(translator.at(group, index), group.rep) if agent is group.rep else _rename_back(translator.at(group, index), back)
+        return _rename_back(translator.at(group, index), back)
 
-    def go(node: m.Expr) -> m.Expr:
+    def counted(node: m.Expr) -> m.Expr | None:
         if isinstance(node, m.VariableRef) and node.variable in counters:
             group, index = counters[node.variable]
             terms = tuple(agent_at(group, agent, index) for agent in group.agents)
             return m.Count(group.name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
-        if isinstance(node, m.Unary):
-            return m.Unary(node.op, go(node.operand), node.type, node.span)
-        if isinstance(node, m.Binary):
-            return m.Binary(node.op, go(node.left), go(node.right), node.type, node.span)
-        return node
+        return None
 
-    return go(e)
+    return replace(e, counted)
 
 
-def _rename_back(e: m.Expr, back: dict[Any, Any]) -> m.Expr:
-    if isinstance(e, m.StateRef) and e.state in back:
-        return m.StateRef(back[e.state], e.span)
-    if isinstance(e, m.VariableRef) and e.variable in back:
-        return m.VariableRef(back[e.variable], e.steps, e.type, e.span)
-    if isinstance(e, m.Unary):
-        return m.Unary(e.op, _rename_back(e.operand, back), e.type, e.span)
-    if isinstance(e, m.Binary):
-        return m.Binary(e.op, _rename_back(e.left, back), _rename_back(e.right, back), e.type, e.span)
-    return e
+def _rename_back(e: m.Expr, names: dict[Any, Any]) -> m.Expr:
+    """``e`` with the states and variables ``names`` maps renamed (one agent's to another's)."""
+
+    def renamed(node: m.Expr) -> m.Expr | None:
+        if isinstance(node, m.StateRef) and node.state in names:
+            return m.StateRef(names[node.state], node.span)
+        if isinstance(node, m.VariableRef) and node.variable in names:
+            return m.VariableRef(names[node.variable], node.steps, node.type, node.span)
+        return None
+
+    return replace(e, renamed)
 
 
 MIN_AGENTS = 3  # a pair of copies (two bumpers, say) is synthesized monolithically: counting buys nothing
