@@ -227,3 +227,38 @@ def test_a_counted_guard_runs_in_the_generated_supervisor():
     source = supervisor_module(result)
     assert "sum((" in source
     compile(source, "supervisor.py", "exec")
+
+
+STUCK = """robot Stuck {
+    component bot[3] {
+        incoming message go with type: none
+        behaviour {
+            initial marked state a { on request to go goto b }
+            marked state b { on request to go goto a }
+            state c {}
+        }
+    }
+    for r in bot {
+        requirement r.go needs count(q in bot: q.b) >= 3
+    }
+}
+"""
+
+
+def test_a_counted_fleet_gets_the_warnings_of_monolithic_synthesis():
+    """At the same places; a state that no robot of the group reaches is said once for them all."""
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    model = check_text(STUCK).model
+    counted = synthesize_model(model)
+    mono = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))
+    assert counted.method == "symmetric"
+    mine = synthesis_warnings(counted)
+    theirs = synthesis_warnings(mono)
+    assert {(d.code, d.span) for d in mine} == {(d.code, d.span) for d in theirs}
+    assert len(theirs) == 3 + 3 + 3  # b and c of each robot, each robot's requirement
+    assert [d.message for d in mine if d.code.value == "unreached-state"] == [
+        "no controlled run brings any of bot1 .. bot3 to state 'b': the supervisor keeps them out",
+        "state 'c' of bot1 .. bot3 can never be reached: no run of the model leads there",
+    ]
+    assert [d.code.value for d in mine].count("never-holds") == 3

@@ -828,3 +828,69 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         time.perf_counter() - start,
         details=details,
     )
+
+
+# ---- warnings on a counted fleet ----------------------------------------------------------
+
+
+def counted_warnings(result: SynthesisResult) -> list[Any]:
+    """The warnings of :func:`robosc.synthesis.warnings.synthesis_warnings` from a counted
+    synthesis: a requirement that never holds in a reachable state, a state no robot of a group
+    reaches (named for the group's robots). ``never-allowed`` needs the explanations, which
+    counted synthesis does not give yet."""
+    from robosc.language.codes import Code
+    from robosc.language.diagnostics import warning
+    from robosc.synthesis.symbolic import reach
+
+    fp: Any = result.details["counted"]
+    supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
+    fleet, enc = supervisor.fleet, fp.enc
+    reachable = fp.reachable
+    found = []
+    seen: set[int] = set()
+    for requirement in result.network.requirements:
+        origin = requirement.origin
+        if origin is None or id(origin) in seen:
+            continue
+        owner = supervisor.agent_of_event.get(requirement.event)
+        if owner is None:
+            holds = reachable & enc.boolean(fleet.translator.template(requirement.condition, None))
+        else:
+            group, agent = owner
+            template = fleet.translator.template(requirement.condition, agent)
+            holds = enc.false
+            for index, counter in enumerate(group.counters):
+                here = reachable & enc.boolean(_ge(counter, 1))
+                if here != enc.false:
+                    holds |= here & enc.boolean(fleet.translator.instantiate(template, group, index))
+        if holds == enc.false:
+            seen.add(id(origin))
+            found.append(
+                warning(
+                    origin.span,
+                    f"{requirement.description} never holds in a reachable state: "
+                    f"'{requirement.event.name}' can never happen ({render(requirement.condition)} is always false)",
+                    Code.NEVER_HOLDS,
+                )
+            )
+    plant = None
+    for group in fleet.groups:
+        rep = group.rep.automata[0]
+        names = [a.component.name for a in group.agents]
+        robots = f"{names[0]} .. {names[-1]}" if len(names) > 2 else " and ".join(names)
+        for location in rep.locations:
+            holding = [i for i, (locations, _) in enumerate(group.local) if locations[0] is location]
+            somewhere = enc.false
+            for index in holding:
+                somewhere |= enc.boolean(_ge(group.counters[index], 1))
+            if (reachable & somewhere) != enc.false:
+                continue
+            plant = reach(enc, fp.initial, fp.relation.values()) if plant is None else plant
+            if (plant & somewhere) == enc.false:
+                message, hint = f"state '{location.name}' of {robots} can never be reached: no run of the model leads there", None
+            else:
+                message = f"no controlled run brings any of {robots} to state '{location.name}': the supervisor keeps them out"
+                hint = "fine for a state to avoid (an error); otherwise see why with --fleet monolithic on a small fleet"
+            found.append(warning(location.span, message, Code.UNREACHED_STATE, hint))
+    found.sort(key=lambda d: (d.span.path, d.span.line, d.span.column))
+    return found

@@ -51,6 +51,10 @@ def consequence(restriction: Restriction) -> str:
 
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     fixpoint: Any = result.details.get("fixpoint")
+    if result.ok and fixpoint is None and result.details.get("counted") is not None:
+        from robosc.synthesis.symmetry import counted_warnings
+
+        return counted_warnings(result)
     if not result.ok or fixpoint is None:
         return []
     enc = fixpoint.enc
