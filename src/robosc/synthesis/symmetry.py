@@ -239,16 +239,17 @@ def _names(agent: Agent) -> set[str]:
     return {a.name for a in agent.automata} | {agent.component.name}
 
 
+def start_of(network: Network, group: Group, agent: Agent) -> LocalState:
+    """Where ``agent`` starts, as a local state of the group's representative."""
+    mapping = group.to_rep[id(agent)]
+    return tuple(mapping[a.initial] for a in agent.automata), tuple(network.initial_values[v] for v in agent.variables)
+
+
 def explore(network: Network, group: Group) -> tuple[Group, list[Move]]:
     """The group with its local states (those reachable from its agents' start, guards
     aside) and counters; the representative's moves between them."""
     rep = group.rep
-    starts = []
-    for agent in group.agents:
-        mapping = group.to_rep[id(agent)]
-        locations = tuple(mapping[a.initial] for a in agent.automata)
-        values = tuple(network.initial_values[v] for v in agent.variables)
-        starts.append((locations, values))
+    starts = [start_of(network, group, agent) for agent in group.agents]
     index: dict[LocalState, int] = {}
     order: list[LocalState] = []
     found: dict[LocalState, list[tuple[Event, LocalState, m.Expr | None]]] = {}
@@ -551,11 +552,9 @@ def counted(network: Network, least: int = 2) -> Counted:
     markers: list[m.Expr] = []
     initial_values = {v: network.initial_values[v] for v in network.variables if v not in agent_variables}
     for group, group_moves in explored:
-        group = next(g for g in found if g.name == group.name)
-        _check_requirements(network, translator, group)
+        templates = _check_requirements(network, translator, group)
         location = m.State("fleet", f"#{group.name}", True, True, NO_SPAN)
         edges: list[Edge] = []
-        templates: dict[int, m.Expr] = {}
         for move in group_moves:
             counter = group.counters[move.source]
             event = Event(
@@ -580,10 +579,7 @@ def counted(network: Network, least: int = 2) -> Counted:
             events.append(event)
             moves[event] = (group, move)
             for requirement in network.requirements_on(move.event):
-                key = id(requirement)
-                if key not in templates:
-                    templates[key] = translator.template(requirement.condition, group.rep)
-                condition = translator.instantiate(templates[key], group, move.source)
+                condition = translator.instantiate(templates[id(requirement)], group, move.source)
                 requirements.append(Requirement(event, condition, requirement.description, requirement.origin))
         automata.append(
             Automaton(f"#{group.name}", AutomatonKind.DATA, (location,), location, tuple(edges), frozenset(e.event for e in edges))
@@ -592,14 +588,9 @@ def counted(network: Network, least: int = 2) -> Counted:
             i for i, (locations, _) in enumerate(group.local) if not all(loc.marked for loc in locations)
         ]
         markers += [_le(group.counters[i], 0) for i in unmarked]
-        starts: dict[int, int] = {}
-        index = {state: i for i, state in enumerate(group.local)}
-        for agent in group.agents:
-            mapping = group.to_rep[id(agent)]
-            start = (tuple(mapping[a.initial] for a in agent.automata), tuple(network.initial_values[v] for v in agent.variables))
-            starts[index[start]] = starts.get(index[start], 0) + 1
-        for i, counter in enumerate(group.counters):
-            initial_values[counter] = starts.get(i, 0)
+        starts = [start_of(network, group, agent) for agent in group.agents]
+        for state, counter in zip(group.local, group.counters, strict=True):
+            initial_values[counter] = starts.count(state)
     variables = tuple(v for v in network.variables if v not in agent_variables) + tuple(
         c for group in found for c in group.counters
     )
@@ -627,22 +618,23 @@ def _add(counter: m.Variable, amount: int) -> m.Expr:
     return m.Binary(op, ref, m.Literal(abs(amount), m.INTEGER, NO_SPAN), m.INTEGER, NO_SPAN)
 
 
-def _check_requirements(network: Network, translator: Translator, group: Group) -> None:
-    """Each agent's requirements say of it what the representative's say of the representative."""
+def _check_requirements(network: Network, translator: Translator, group: Group) -> dict[int, m.Expr]:
+    """Each agent's requirements say of it what the representative's say of the representative;
+    the representative's templates, by requirement (``id``)."""
     expected = None
+    templates: dict[int, m.Expr] = {}
     for agent in group.agents:
         mapping = group.to_rep[id(agent)]
-        texts = sorted(
-            (mapping[r.event].name, render(translator.template(r.condition, agent)))
-            for e in agent.events
-            for r in network.requirements_on(e)
-        )
+        mine = {id(r): (r, translator.template(r.condition, agent)) for e in agent.events for r in network.requirements_on(e)}
+        texts = sorted((mapping[r.event].name, render(template)) for r, template in mine.values())
         if expected is None:
             expected = texts
+            templates = {key: template for key, (_, template) in mine.items()}
         elif texts != expected:
             raise NotSymmetric(
                 f"the requirements of '{agent.component.name}' differ from those of '{group.rep.component.name}'"
             )
+    return templates
 
 
 # ---- synthesis ------------------------------------------------------------------------------
@@ -660,18 +652,19 @@ class CountedSupervisor:
             for agent in group.agents:
                 for event in agent.events:
                     self.agent_of_event[event] = (group, agent)
-        # (group, the representative's event, local state) -> the counted events of that move
-        self.counted_events: dict[tuple[str, Event, int], list[Event]] = {}
-        for counted_event, (group, move) in fleet.moves.items():
-            self.counted_events.setdefault((group.name, move.event, move.source), []).append(counted_event)
+        # the representative's event -> the counted events of its moves (from each local state)
+        self.counted_events: dict[Event, list[Event]] = {}
+        for counted_event, (_, move) in fleet.moves.items():
+            self.counted_events.setdefault(move.event, []).append(counted_event)
         self.index = {group.name: {s: i for i, s in enumerate(group.local)} for group in fleet.groups}
+        self.by_name = {a.name: a for a in network.automata}  # the counted network rebuilds the shared ones
 
     def _state(self, state: Any) -> Any:
         """The counted state of an original network state."""
         fleet, enc = self.fleet, self.fp.enc
         where = dict(zip(self.network.automata, state.locations, strict=True))
         values = dict(zip(self.network.variables, state.values, strict=True))
-        by_name = {a.name: a for a in self.network.automata}  # the counted network rebuilds the shared ones
+        by_name = self.by_name
         locations = {
             a: where[by_name[a.name]] if a.name in by_name else a.initial for a in fleet.network.automata
         }
@@ -702,7 +695,9 @@ class CountedSupervisor:
         values = dict(zip(self.network.variables, state.values, strict=True))
         source = self.index[group.name][self.local(group, agent, where, values)]
         rep_event = group.to_rep[id(agent)][event]
-        for counted_event in self.counted_events.get((group.name, rep_event, source), ()):
+        for counted_event in self.counted_events.get(rep_event, ()):
+            if self.fleet.moves[counted_event][1].source != source:
+                continue
             bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
             if (here & bdd) != enc.false:
                 return True
@@ -790,9 +785,6 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
             network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
         )
     translator = fleet.translator
-    by_rep: dict[Event, list[Event]] = {}
-    for counted_event, (_, move) in fleet.moves.items():
-        by_rep.setdefault(move.event, []).append(counted_event)
     guards = []
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
@@ -804,7 +796,7 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         else:
             group, agent = owner
             rep_event = group.to_rep[id(agent)][event]
-            pairs = [(ce, fleet.moves[ce][1].source) for ce in by_rep.get(rep_event, [])]
+            pairs = [(ce, fleet.moves[ce][1].source) for ce in supervisor.counted_events.get(rep_event, [])]
         parts = []
         for counted_event, source in pairs:
             care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
@@ -841,38 +833,26 @@ def counted_warnings(result: SynthesisResult) -> list[Any]:
     from robosc.language.codes import Code
     from robosc.language.diagnostics import warning
     from robosc.synthesis.symbolic import reach
+    from robosc.synthesis.warnings import never_holding
 
     fp: Any = result.details["counted"]
     supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
     fleet, enc = supervisor.fleet, fp.enc
     reachable = fp.reachable
-    found = []
-    seen: set[int] = set()
-    for requirement in result.network.requirements:
-        origin = requirement.origin
-        if origin is None or id(origin) in seen:
-            continue
+
+    def holds_somewhere(requirement: Requirement) -> bool:
         owner = supervisor.agent_of_event.get(requirement.event)
         if owner is None:
-            holds = reachable & enc.boolean(fleet.translator.template(requirement.condition, None))
-        else:
-            group, agent = owner
-            template = fleet.translator.template(requirement.condition, agent)
-            holds = enc.false
-            for index, counter in enumerate(group.counters):
-                here = reachable & enc.boolean(_ge(counter, 1))
-                if here != enc.false:
-                    holds |= here & enc.boolean(fleet.translator.instantiate(template, group, index))
-        if holds == enc.false:
-            seen.add(id(origin))
-            found.append(
-                warning(
-                    origin.span,
-                    f"{requirement.description} never holds in a reachable state: "
-                    f"'{requirement.event.name}' can never happen ({render(requirement.condition)} is always false)",
-                    Code.NEVER_HOLDS,
-                )
-            )
+            return bool((reachable & enc.boolean(fleet.translator.template(requirement.condition, None))) != enc.false)
+        group, agent = owner
+        template = fleet.translator.template(requirement.condition, agent)
+        for index, counter in enumerate(group.counters):  # some robot at this local state: maybe this one
+            here = reachable & enc.boolean(_ge(counter, 1))
+            if here != enc.false and (here & enc.boolean(fleet.translator.instantiate(template, group, index))) != enc.false:
+                return True
+        return False
+
+    found = never_holding(result.network, holds_somewhere)
     plant = None
     for group in fleet.groups:
         rep = group.rep.automata[0]

@@ -5,13 +5,14 @@ reachable state, a component state that no controlled run reaches. Each is a
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from robosc.language.codes import Code
 from robosc.language.diagnostics import Diagnostic, warning
 from robosc.language.render import render
 from robosc.language.source import Span
-from robosc.plant.network import AutomatonKind, Event
+from robosc.plant.network import AutomatonKind, Event, Network, Requirement
 from robosc.synthesis.result import Restriction, SynthesisResult
 from robosc.synthesis.symbolic import reach
 
@@ -49,6 +50,27 @@ def consequence(restriction: Restriction) -> str:
     return f"it would lead to [{restriction.after}]; {then}{restriction.consequence.reason}"
 
 
+def never_holding(network: Network, holds: Callable[[Requirement], bool]) -> list[Diagnostic]:
+    """A ``never-holds`` warning for each requirement statement one of whose requirements
+    ``holds`` says is false in every reachable state (once per statement)."""
+    found = []
+    seen: set[int] = set()
+    for requirement in network.requirements:
+        origin = requirement.origin
+        if origin is None or id(origin) in seen or holds(requirement):
+            continue
+        seen.add(id(origin))
+        found.append(
+            warning(
+                origin.span,
+                f"{requirement.description} never holds in a reachable state: "
+                f"'{requirement.event.name}' can never happen ({render(requirement.condition)} is always false)",
+                Code.NEVER_HOLDS,
+            )
+        )
+    return found
+
+
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     fixpoint: Any = result.details.get("fixpoint")
     if result.ok and fixpoint is None and result.details.get("counted") is not None:
@@ -75,21 +97,7 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
                 or "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
             )
         )
-    seen: set[int] = set()
-    for requirement in result.network.requirements:
-        origin = requirement.origin
-        if origin is None or id(origin) in seen:
-            continue
-        if (reachable & enc.boolean(requirement.condition)) == enc.false:
-            seen.add(id(origin))
-            found.append(
-                warning(
-                    origin.span,
-                    f"{requirement.description} never holds in a reachable state: "
-                    f"'{requirement.event.name}' can never happen ({render(requirement.condition)} is always false)",
-                    Code.NEVER_HOLDS,
-                )
-            )
+    found += never_holding(result.network, lambda r: (reachable & enc.boolean(r.condition)) != enc.false)
     plant: Any = None
     for automaton in result.network.automata:
         if automaton.kind is not AutomatonKind.COMPONENT:

@@ -86,8 +86,8 @@ class ExpressionResolver:
         """Whether expansion may go on: at most :data:`~instances.MAX_EXPANSION` expression nodes."""
         if self.reporter.made <= inst.MAX_EXPANSION:
             return True
-        if self.reporter.made < 2 * inst.MAX_EXPANSION + 1:  # said once
-            self.reporter.made = 2 * inst.MAX_EXPANSION + 1
+        if not self.reporter.expansion_stopped:  # said once
+            self.reporter.expansion_stopped = True
             self.reporter.error(
                 span,
                 f"the quantifiers and 'for' blocks here expand to more than {inst.MAX_EXPANSION:,} expression nodes",

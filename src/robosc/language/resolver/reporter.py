@@ -16,6 +16,7 @@ class Reporter:
         # each name that resolved, and what it names (a model object with a span): for editors
         self.references: list[tuple[Span, Any]] = []
         self.made = 0  # expression nodes resolved: quantifiers and 'for' blocks stop at a bound
+        self.expansion_stopped = False  # the bound was passed (and said)
 
     def refer(self, span: Span, target: Any) -> None:
         self.references.append((span, target))
