@@ -262,3 +262,27 @@ def test_a_counted_fleet_gets_the_warnings_of_monolithic_synthesis():
         "state 'c' of bot1 .. bot3 can never be reached: no run of the model leads there",
     ]
     assert [d.code.value for d in mine].count("never-holds") == 3
+
+
+TOGGLE = """robot Toggle {
+    component bot[3] {
+        incoming message go with type: none
+        behaviour {
+            initial marked state a { on request to go goto b }
+            marked state b { on request to go goto a }
+        }
+    }
+    for r in bot {
+        requirement r.go needs !any(q in bot: q != r and q.b)
+        requirement r.go needs r.a or all(q in bot: q = r or q.a)
+    }
+}
+"""
+
+
+def test_counting_the_others_leaves_out_the_robot_itself():
+    """A robot in b asks whether *another* robot is in b: counted, it is one of the b's."""
+    mono, fleet = agree_with_monolithic(TOGGLE)
+    alone = fleet.state({"bot1": "b"})
+    assert fleet.allows("bot1.go", alone) and mono.allows("bot1.go", mono.state({"bot1": "b"}))
+    assert not fleet.allows("bot2.go", alone)  # bot2 in a, bot1 (another) in b
