@@ -74,6 +74,11 @@ class FakeNode(NodeCore):
         for topic in list(self.inputs.values()) + list(self.outputs.values()):
             topic.type = {"Twist": Twist, "Int16": Int16, "Float32": Float32}.get(topic.type_name, Data)
 
+    listening = True  # whether the robot subscribes to the node's command topics
+
+    def listeners(self, topic: Any) -> int:
+        return int(self.listening)
+
     def publish(self, topic: Any, message: Any) -> bool:
         self.published.append((topic.name, message))
         return True
@@ -175,6 +180,25 @@ def test_the_controller_never_publishes_what_its_message_cannot_carry() -> None:
     node.checkpoint()
     assert len(node.published) == 1
     assert any("outside int16" in text for _, text in node.logs)
+
+
+def test_a_command_nobody_subscribes_to_is_held_not_performed() -> None:
+    """A message on a topic without subscribers is lost: the supervisor must not believe it
+    sent it (a robot of the fleet not up yet, a link down). It is held and reported."""
+    node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
+    node.listening = False
+    node.receive(node.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))
+    node.cycle()
+    assert node.published == []
+    assert "turn_left" in node.supervisor.allowed()  # not performed: the turn is still to be made
+    assert any("held: turn_left: nothing subscribes to /rotate_left" in text for _, text in node.logs)
+    node.listening = True  # the robot subscribes
+    node.cycle()
+    assert [name for name, _ in node.published] == ["/rotate_left"]
+    waived = FakeNode("examples/maze_solver.rscd", "controller", wait_for_listeners=False, tick_on_message=True)
+    waived.listening = False
+    waived.receive(waived.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))
+    assert [name for name, _ in waived.published] == ["/rotate_left"]
 
 
 def test_fill_checks_ranges_and_types() -> None:

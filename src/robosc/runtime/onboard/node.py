@@ -95,6 +95,11 @@ PARAMETERS = (
     Parameter("state_file", "", "where the state is persisted (empty: $ROS_HOME/robosc/<node>.state.json)"),
     Parameter("state_max_age", 3600.0, "seconds after which a persisted state is too old to resume", 0.0, 1e9),
     Parameter(
+        "wait_for_listeners",
+        True,
+        "send a command on a topic only while something subscribes to it (else hold it and report)",
+    ),
+    Parameter(
         "wait_for_data",
         True,
         "perform nothing until every communication whose data a condition reads has delivered readable data",
@@ -466,6 +471,11 @@ class NodeCore(object):
             return True  # tau, reset, and data events have nothing to send
         if isinstance(place, Topic):
             topic = place
+            if self.params["wait_for_listeners"] and self.listeners(topic) == 0:
+                # a message nobody subscribes to is lost, and the supervisor would believe the
+                # robot got it (a robot not up yet, a link down): hold the command instead
+                self.warnings("held: %s: nothing subscribes to %s" % (name, topic.name), "unheard " + name)
+                return False
             if self.mode == "supervisor":
                 message = data  # the controller's own message, already checked
             else:
@@ -574,6 +584,10 @@ class NodeCore(object):
             publisher.publish(self.text_type(data=text))
 
     # ---- implemented by the adapters -------------------------------------------------------
+
+    def listeners(self, topic: Topic) -> int:
+        """How many subscribers ``topic`` (a command topic of the robot) has now."""
+        raise NotImplementedError
 
     def text_subscribers(self, topic_name: str) -> int:
         """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""

@@ -45,6 +45,7 @@ from .node import (
     VIEW_PAGE_TOPIC,
     Call,
     NodeCore,
+    Topic,
     controller_side,
     default_name,
 )
@@ -207,6 +208,9 @@ class SupervisorNode(Node, NodeCore):
                 self.answer(call.error, None)
 
         state["timer"] = self.create_timer(POLL_SECONDS, self.callback(poll))
+
+    def listeners(self, topic: Topic) -> int:
+        return int(topic.publisher.get_subscription_count())
 
     def text_subscribers(self, topic_name: str) -> int:
         publisher = self.text_publishers.get(topic_name)
