@@ -122,9 +122,13 @@ class Encoding:
 
     def sums_to(self, counters: Sequence[m.Variable], total: int) -> BDD:
         """The states where ``counters`` add up to ``total`` (a counted fleet's agents are all
-        somewhere): summed counter by counter, partial sums above ``total`` dropped."""
+        somewhere): summed counter by counter, partial sums above ``total`` dropped. The counters
+        are taken from the bottom of the variable order up, so that each step puts a counter's
+        few nodes above BDDs already built instead of going through them (ring of 24 robots:
+        14 s before)."""
         partial = {0: self.true}
-        for counter in counters:
+        deepest_first = sorted(counters, key=lambda c: -self.bdd.level_of_var(self.field(c).bits[0]))
+        for counter in deepest_first:
             field = self.field(counter)
             step: dict[int, BDD] = {}
             for so_far, where in partial.items():

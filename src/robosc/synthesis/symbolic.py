@@ -15,6 +15,8 @@ import time
 from collections.abc import Iterable
 from typing import Any
 
+from dd import cudd
+
 from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
@@ -119,7 +121,14 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
         while True:  # nonblocking: who reaches a marked state through good states (chained)
             before = good
             for r in restricted:
-                good |= enc.pre(r, good) & ~bad
+                # each event to its own fixed point before the next: a counted fleet's event
+                # moves one robot, so k robots in one state need it k times (ring of 16 robots:
+                # 1,696 preimages in 3.7 s before, 768 in 1.7 s)
+                while True:
+                    grown = good | (enc.pre(r, good) & ~bad)
+                    if grown == good:
+                        break
+                    good = grown
             if good == before:
                 break
         new_bad = enc.valid() & ~good
@@ -132,7 +141,11 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
     }
     reachable = enc.false
     if (initial & bad) == enc.false:
-        steps = [relation[e].restrict(allowed[e]) for e in network.controllable] + uncontrollable
+        # in the network's order, each event's uncontrollable answers right after it (ring of 16
+        # robots: 9.7 s instead of 11.7 s); the allowed sets only where states are valid, which
+        # every reachable state is (a smaller BDD to apply at every image)
+        valid = enc.valid()
+        steps = [relation[e].restrict(cudd.restrict(allowed[e], valid)) if e.controllable else relation[e] for e in network.events]
         reachable = reach(enc, initial, steps)  # forward reachability under the supervisor
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
