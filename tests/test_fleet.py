@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -286,3 +287,95 @@ def test_counting_the_others_leaves_out_the_robot_itself():
     alone = fleet.state({"bot1": "b"})
     assert fleet.allows("bot1.go", alone) and mono.allows("bot1.go", mono.state({"bot1": "b"}))
     assert not fleet.allows("bot2.go", alone)  # bot2 in a, bot1 (another) in b
+
+
+NEVER = """robot Never {
+    component bot[3] {
+        incoming message go with type: none
+        incoming message back with type: none
+        behaviour {
+            initial marked state a { on request to go goto b }
+            state b { on request to back goto a }
+        }
+    }
+    for r in bot {
+        // back only while every robot is in a: never, once one of them left
+        requirement r.back needs count(q in bot: q.a) >= 3
+    }
+}
+"""
+
+
+PARTLY = """robot Partly {
+    component bot[3] {
+        incoming message go with type: none
+        incoming message back with type: none
+        behaviour {
+            initial marked state a { on request to go goto b }
+            marked state b {
+                on request to go goto c
+                on request to back goto a
+            }
+            state c { on request to back goto a }
+        }
+    }
+    for r in bot {
+        requirement r.back needs !r.c // so go from b never: c would have no way out
+    }
+}
+"""
+
+
+def replay(result: Any, restriction: Any) -> None:
+    """The explanation's run is a run of the fleet under the (monolithic) supervisor ``result``:
+    each step allowed there and reaching the state the explanation names; at its end the
+    supervisor disables the event, which would lead outside the controlled behaviour."""
+    from robosc.synthesis.explicit import successors
+    from robosc.synthesis.state import describe, initial_state
+
+    network = result.network
+    here = initial_state(network)
+    for step in restriction.path:
+        event = network.event(step.event.name)
+        assert result.allows(event, here), event.name
+        here = next(s for s in successors(network, here, event) if describe(network, s) == step.state)
+        assert result.controlled(here)
+    assert describe(network, here) == restriction.state
+    restricted = network.event(restriction.event.name)
+    assert not result.allows(restricted, here)
+    after = next(s for s in successors(network, here, restricted) if describe(network, s) == restriction.after)
+    assert not result.controlled(after)
+
+
+@pytest.mark.parametrize(
+    "text", [DEADLOCK, NEVER, PARTLY, "warehouse"], ids=["deadlock", "never", "partly", "warehouse"]
+)
+def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
+    """The explanation of each added condition is found on the counted network and followed with
+    the fleet's robots: a shortest run of the fleet itself (as long as the monolithic method's),
+    never-allowed where the monolithic method says so, and the same warnings."""
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    if text == "warehouse":
+        text = (Path(__file__).resolve().parent.parent / "examples/warehouse.rscd").read_text()
+    model = check_text(text).model
+    fleet = synthesize_model(model)
+    mono = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))
+    assert fleet.method == "symmetric" and mono.method == "symbolic"
+    added = [g.event.name for g in mono.added_guards]
+    assert added and added == [g.event.name for g in fleet.added_guards]
+    for event in added:
+        mine, theirs = fleet.why(event), mono.why(event)
+        assert theirs is not None and mine is not None, event
+        assert mine.never == theirs.never and len(mine.path) == len(theirs.path), event
+        assert "the same for every robot of bot (bot1 .. bot3)" in mine.note
+        replay(mono, mine)
+    assert {(d.code, d.span) for d in synthesis_warnings(fleet)} == {(d.code, d.span) for d in synthesis_warnings(mono)}
+
+
+def test_a_fleet_event_never_allowed_is_said_once_for_the_robots():
+    from robosc.synthesis.warnings import synthesis_warnings
+
+    [warning] = [d for d in synthesis_warnings(synthesize_model(check_text(NEVER).model)) if d.code.value == "never-allowed"]
+    assert warning.message.startswith("synthesis never allows 'bot1.go' (the same for every robot of bot (bot1 .. bot3))")
+    assert "[bot1.b, bot2.a, bot3.a]" in warning.message

@@ -121,6 +121,11 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
     headers = ("controllable event", "your condition", "added by synthesis")
     click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=columns))
     restrictions = [r for r in (result.why(g.event) for g in result.added_guards) if r is not None]
+    if result.method == "symmetric":  # a fleet's robots are restricted alike: each explanation once
+        once: dict[str, Restriction] = {}
+        for restriction in restrictions:
+            once.setdefault(restriction.note or restriction.event.name, restriction)
+        restrictions = list(once.values())
     if restrictions:
         click.echo("why synthesis added these conditions:")
         for restriction in restrictions:

@@ -14,7 +14,7 @@ from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Req
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
 from robosc.synthesis.result import Explanation, Fix, Step
-from robosc.synthesis.state import NetworkState, describe
+from robosc.synthesis.state import NetworkState
 
 
 def pick(fp: Any, states: BDD) -> NetworkState:
@@ -77,6 +77,16 @@ def explain(fp: Any) -> Explanation:
 
 def explain_from(fp: Any, start: BDD, failed: bool = False) -> Explanation:
     """Why the bad state ``start`` must be avoided (``failed``: it is the initial state)."""
+    first, path, reason, found = explain_path(fp, start, failed)
+    steps = tuple(Step(event, fp.describe(reached)) for event, reached in path)
+    return Explanation(reason, fp.describe(first), steps, found)
+
+
+def explain_path(
+    fp: Any, start: BDD, failed: bool = False
+) -> tuple[NetworkState, list[tuple[Event, NetworkState]], str, tuple[Fix, ...]]:
+    """:func:`explain_from`'s parts: the state of ``start`` explained, the uncontrollable
+    events from it (each with the state it reaches), the reason and the fixes."""
     enc = fp.enc
     network = enc.network
     uncontrollable = network.uncontrollable
@@ -90,13 +100,12 @@ def explain_from(fp: Any, start: BDD, failed: bool = False) -> Explanation:
         target = layers[-1]
     last = pick(fp, target)
     path = walk_back(fp, layers, last, [(e, fp.relation[e]) for e in uncontrollable])
-    steps = tuple(Step(event, describe(network, reached)) for event, reached in path)
     reason = _reason(fp, last, failed)
     found = fixes(fp, last) if reason.startswith("the system would block") else []
     trapped = fp.memo.get(("trapped", last))
     if trapped is not None:
         found += fixes(fp, trapped)
-    return Explanation(reason, describe(network, pick(fp, start)), steps, _likeliest(found))
+    return pick(fp, start), path, reason, _likeliest(found)
 
 
 def _likeliest(found: list[Fix]) -> tuple[Fix, ...]:
@@ -261,7 +270,7 @@ def _trap(fp: Any, state: NetworkState) -> str | None:
                 fp.memo[("trapped", state)] = trapped  # its fixes are the explanation's too
                 stays = "; ".join(_exits(fp, trapped))
                 return (
-                    f"{cut}happen and lead to [{describe(network, trapped)}], from where no marked state can be "
+                    f"{cut}happen and lead to [{fp.describe(trapped)}], from where no marked state can be "
                     f"reached at all ({stays or 'no component can leave'})"
                 )
             if (fp.requirement_bad & into) != enc.false:
@@ -279,7 +288,7 @@ def _reason(fp: Any, state: NetworkState, failed: bool = False) -> str:
         for requirement in network.requirements_on(event):
             if (where & ~enc.boolean(requirement.condition)) != enc.false:
                 return (
-                    f"in state [{describe(network, state)}] the uncontrollable event '{event.name}' can happen, "
+                    f"in state [{fp.describe(state)}] the uncontrollable event '{event.name}' can happen, "
                     f"but {requirement.description} does not hold there ({render(requirement.condition)} is false); "
                     "a supervisor cannot prevent uncontrollable events, so it must keep the system out of this state"
                     + (", and it cannot" if failed else "")
@@ -298,6 +307,6 @@ def _reason(fp: Any, state: NetworkState, failed: bool = False) -> str:
     if trap:
         because += f". {trap}"
     return (
-        f"the system would block: from state [{describe(network, state)}]{stuck} no sequence of events that the "
+        f"the system would block: from state [{fp.describe(state)}]{stuck} no sequence of events that the "
         f"requirements allow leads to a state where every component is in a marked state{because}"
     )

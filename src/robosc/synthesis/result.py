@@ -75,6 +75,7 @@ class Restriction:
     after: str
     consequence: Explanation
     never: bool = False
+    note: str = ""  # a fleet's: the robot the run is shown for, when another's event was asked about
 
 
 @record
@@ -93,6 +94,10 @@ class SynthesisResult:
         request from the symbolic synthesis' BDDs."""
         found = self.network.event(event) if isinstance(event, str) else event
         fixpoint: Any = self.details.get("fixpoint")
+        if self.ok and found.controllable and fixpoint is None and "counted" in self.details:
+            from robosc.synthesis.fleet_why import counted_why
+
+            return counted_why(self, found)
         if not self.ok or fixpoint is None or not found.controllable:
             return None
         from robosc.synthesis.why import why

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 from robosc.language import model as m
 from robosc.language.render import literal
-from robosc.plant.network import AutomatonKind, Network
+from robosc.plant.network import Automaton, AutomatonKind, Network
 from robosc.record import record
 
 
@@ -22,12 +24,20 @@ def initial_state(network: Network) -> NetworkState:
 
 def describe(network: Network, state: NetworkState) -> str:
     """A state as people read it: component states, variables, busy communication."""
+    parts = describe_parts(zip(network.automata, state.locations, strict=True), zip(network.variables, state.values, strict=True))
+    return ", ".join(parts) if parts else "(the only state)"
+
+
+def describe_parts(
+    locations: Iterable[tuple[Automaton, m.State]], values: Iterable[tuple[m.Variable, object]]
+) -> list[str]:
+    """:func:`describe`'s parts for these automata in these locations and variables with these values."""
     parts = []
-    for automaton, location in zip(network.automata, state.locations, strict=True):
+    for automaton, location in locations:
         if automaton.kind is AutomatonKind.COMPONENT or (
             automaton.kind in (AutomatonKind.SERVICE, AutomatonKind.ACTION) and location is not automaton.initial
         ):
             parts.append(f"{automaton.name}.{location.name}")
-    for variable, value in zip(network.variables, state.values, strict=True):
+    for variable, value in values:
         parts.append(f"{variable.owner}.{variable.name} = {literal(value)}")
-    return ", ".join(parts) if parts else "(the only state)"
+    return parts

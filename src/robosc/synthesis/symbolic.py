@@ -25,7 +25,7 @@ from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.state import NetworkState
+from robosc.synthesis.state import NetworkState, describe
 
 
 @record(frozen=False)
@@ -43,6 +43,13 @@ class Fixpoint:
     allowed: dict[Event, BDD]  # controllable events: where the supervisor allows them
     reachable: BDD
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
+    describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
+
+    def describe(self, state: NetworkState) -> str:
+        """``state`` in words, for explanations."""
+        if self.describer is not None:
+            return str(self.describer(state))
+        return describe(self.enc.network, state)
 
     def allows(self, event: Event, state: NetworkState) -> bool:
         """Whether ``event`` can happen in ``state`` under the supervisor."""

@@ -774,6 +774,9 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
     enc = fp.enc
     described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
     supervisor = CountedSupervisor(network, fleet, fp)
+    from robosc.synthesis.fleet_why import describer
+
+    fp.describer = describer(supervisor)
     details: dict[str, Any] = {
         "counted": fp,
         "effort": enc.effort(),
@@ -828,12 +831,12 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
 def counted_warnings(result: SynthesisResult) -> list[Any]:
     """The warnings of :func:`robosc.synthesis.warnings.synthesis_warnings` from a counted
     synthesis: a requirement that never holds in a reachable state, a state no robot of a group
-    reaches (named for the group's robots). ``never-allowed`` needs the explanations, which
-    counted synthesis does not give yet."""
+    reaches (named for the group's robots), and a controllable event it never allows (from
+    the explanations of :mod:`robosc.synthesis.fleet_why`)."""
     from robosc.language.codes import Code
     from robosc.language.diagnostics import warning
     from robosc.synthesis.symbolic import reach
-    from robosc.synthesis.warnings import never_holding
+    from robosc.synthesis.warnings import never_allowed, never_holding
 
     fp: Any = result.details["counted"]
     supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
@@ -852,7 +855,7 @@ def counted_warnings(result: SynthesisResult) -> list[Any]:
                 return True
         return False
 
-    found = never_holding(result.network, holds_somewhere)
+    found = never_allowed(result) + never_holding(result.network, holds_somewhere)
     plant = None
     for group in fleet.groups:
         rep = group.rep.automata[0]

@@ -29,6 +29,8 @@ def why_lines(restriction: Restriction) -> list[str]:
     """The explanation of one added condition, as indented lines."""
     name = restriction.event.name
     lines = [f"{name}{' (never allowed)' if restriction.never else ''}:"]
+    if restriction.note:
+        lines.append(f"    ({restriction.note})")
     if restriction.path:
         lines.append("    a shortest run to a state where synthesis disables it:")
         lines += [f"      {n}. {s.event.name}  ->  {s.state}" for n, s in enumerate(restriction.path, 1)]
@@ -71,6 +73,33 @@ def never_holding(network: Network, holds: Callable[[Requirement], bool]) -> lis
     return found
 
 
+def never_allowed(result: SynthesisResult) -> list[Diagnostic]:
+    """A ``never-allowed`` warning for each controllable event the supervisor never allows
+    (once per place in the model: a fleet's robots share their transitions)."""
+    found: list[Diagnostic] = []
+    places: set[Span] = set()
+    for guard in result.added_guards:
+        span = event_span(guard.event)
+        if span is None or span in places:
+            continue
+        restriction = result.why(guard.event)
+        if restriction is None or not restriction.never:
+            continue
+        places.add(span)
+        alike = f" ({restriction.note})" if restriction.note else ""
+        found.append(
+            warning(
+                span,
+                f"synthesis never allows '{guard.event.name}'{alike} (it adds the condition false): in "
+                f"[{restriction.state}] {consequence(restriction)}",
+                Code.NEVER_ALLOWED,
+                "; ".join(f"fix: {fix}" for fix in restriction.consequence.fixes)
+                or "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
+            )
+        )
+    return found
+
+
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     fixpoint: Any = result.details.get("fixpoint")
     if result.ok and fixpoint is None and result.details.get("counted") is not None:
@@ -81,22 +110,7 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
         return []
     enc = fixpoint.enc
     reachable = fixpoint.reachable
-    found: list[Diagnostic] = []
-    for guard in result.added_guards:
-        restriction = result.why(guard.event)
-        span = event_span(guard.event)
-        if restriction is None or not restriction.never or span is None:
-            continue
-        found.append(
-            warning(
-                span,
-                f"synthesis never allows '{guard.event.name}' (it adds the condition false): in "
-                f"[{restriction.state}] {consequence(restriction)}",
-                Code.NEVER_ALLOWED,
-                "; ".join(f"fix: {fix}" for fix in restriction.consequence.fixes)
-                or "run 'robosc synthesize' for the whole explanation; change the model so that this cannot happen",
-            )
-        )
+    found = never_allowed(result)
     found += never_holding(result.network, lambda r: (reachable & enc.boolean(r.condition)) != enc.false)
     plant: Any = None
     for automaton in result.network.automata:

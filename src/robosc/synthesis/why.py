@@ -9,10 +9,27 @@ from __future__ import annotations
 from typing import Any
 
 from robosc.plant.network import Event
+from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.explain import explain_from, layers_from, pick, walk_back
-from robosc.synthesis.result import Restriction, Step
-from robosc.synthesis.state import describe
+from robosc.synthesis.explain import explain_path, pick, walk_back
+from robosc.synthesis.result import Explanation, Restriction, Step
+from robosc.synthesis.state import NetworkState
+
+Path = list[tuple[Event, NetworkState]]  # events, each with the state it reaches
+
+
+@record
+class Reasons:
+    """A :class:`Restriction` before its states are put in words."""
+
+    event: Event
+    run: Path  # from the initial state to ``state``
+    state: NetworkState
+    after: NetworkState
+    consequence: Path  # uncontrollable events from ``after``
+    reason: str
+    fixes: tuple[Any, ...]
+    never: bool
 
 
 def _steps(fp: Any) -> list[tuple[Event, Relation]]:
@@ -24,27 +41,41 @@ def _steps(fp: Any) -> list[tuple[Event, Relation]]:
     ]
 
 
-def _controlled(fp: Any) -> tuple[list[tuple[Event, Relation]], list[BDD]]:
+def _layers(fp: Any, target: BDD) -> tuple[list[tuple[Event, Relation]], list[BDD]]:
     """The controlled system's transitions, and its breadth-first layers from the initial
-    state (layer k: the states first reached after k events). Kept per synthesis result."""
-    if "controlled layers" not in fp.memo:
-        steps = _steps(fp)
-        fp.memo["controlled layers"] = steps, layers_from(fp.enc, fp.initial, (r for _, r in steps))
-    found: tuple[list[tuple[Event, Relation]], list[BDD]] = fp.memo["controlled layers"]
-    return found
-
-
-def shortest_run(fp: Any, target: BDD) -> tuple[Any, tuple[Step, ...]] | None:
-    """A state of ``target`` reached by the fewest events of the controlled system, and
-    those events; None when the controlled system never reaches ``target``."""
+    state (layer k: the states first reached after k events), at least up to the first that
+    meets ``target`` or to the last. Kept per synthesis result and grown on request: a large
+    fleet has many layers, and a run to a restriction is usually short."""
     enc = fp.enc
-    steps, layers = _controlled(fp)
+    if "controlled layers" not in fp.memo:
+        fp.memo["controlled layers"] = (_steps(fp), [fp.initial], fp.initial, False)
+    steps, layers, seen, complete = fp.memo["controlled layers"]
+    reached = any((layer & target) != enc.false for layer in layers)
+    while not (reached or complete):
+        image = enc.false
+        for _, relation in steps:
+            image |= enc.post(relation, layers[-1])
+        frontier = image & ~seen
+        complete = frontier == enc.false
+        if not complete:
+            layers.append(frontier)
+            seen |= frontier
+            reached = (frontier & target) != enc.false
+    fp.memo["controlled layers"] = (steps, layers, seen, complete)
+    return steps, layers
+
+
+def shortest_path(fp: Any, target: BDD) -> tuple[NetworkState, Path] | None:
+    """A state of ``target`` reached by the fewest events of the controlled system, and
+    those events with the states they reach; None when the controlled system never reaches
+    ``target``."""
+    enc = fp.enc
+    steps, layers = _layers(fp, target)
     depth = next((k for k, layer in enumerate(layers) if (layer & target) != enc.false), None)
     if depth is None:
         return None
     end = pick(fp, layers[depth] & target)
-    path = walk_back(fp, layers[: depth + 1], end, steps)
-    return end, tuple(Step(event, describe(enc.network, reached)) for event, reached in path)
+    return end, walk_back(fp, layers[: depth + 1], end, steps)
 
 
 def why(fp: Any, event: Event) -> Restriction | None:
@@ -52,21 +83,35 @@ def why(fp: Any, event: Event) -> Restriction | None:
     requirements allow it; None when it never does. Kept per result and event."""
     key = ("why", event)
     if key not in fp.memo:
-        fp.memo[key] = _why(fp, event)
-    found: Restriction | None = fp.memo[key]
-    return found
+        found = reasons(fp, event)
+        fp.memo[key] = None if found is None else in_words(fp, found)
+    restriction: Restriction | None = fp.memo[key]
+    return restriction
 
 
-def _why(fp: Any, event: Event) -> Restriction | None:
+def in_words(fp: Any, found: Reasons) -> Restriction:
+    consequence = Explanation(
+        found.reason,
+        fp.describe(found.after),
+        tuple(Step(event, fp.describe(reached)) for event, reached in found.consequence),
+        found.fixes,
+    )
+    run = tuple(Step(event, fp.describe(reached)) for event, reached in found.run)
+    return Restriction(found.event, run, fp.describe(found.state), fp.describe(found.after), consequence, found.never)
+
+
+def reasons(fp: Any, event: Event) -> Reasons | None:
+    """:func:`why`'s parts, the states not yet in words."""
     enc = fp.enc
-    network = enc.network
     into_bad = enc.pre(fp.relation[event], fp.bad)
     disabled = fp.reachable & fp.enabled[event] & fp.required[event] & into_bad
-    found = shortest_run(fp, disabled)
+    if disabled == enc.false:
+        return None
+    found = shortest_path(fp, disabled)
     if found is None:
         return None
     state, run = found
     after = pick(fp, enc.post(fp.relation[event], fp.state(state)) & fp.bad)
-    consequence = explain_from(fp, fp.state(after))
+    _, consequence, reason, fixes = explain_path(fp, fp.state(after))
     never = (fp.allowed[event] & fp.reachable) == enc.false
-    return Restriction(event, run, describe(network, state), describe(network, after), consequence, never)
+    return Reasons(event, run, state, after, consequence, reason, fixes, never)

@@ -1,0 +1,194 @@
+"""Explanations on a counted fleet (:mod:`robosc.synthesis.symmetry`), naming its robots.
+
+Synthesis on a counted fleet knows how many robots are in each local state, not which. An
+explanation is found on the counted network as on any network (:mod:`robosc.synthesis.why`:
+a shortest run to a state where the supervisor disables the event, and what goes wrong
+after it), and then followed with real robots: each counted step moves one robot from a
+local state to another, so the run is replayed from the fleet's start with, at each step,
+the first robot (in the model's order) that is in that local state. By symmetry this is a
+run of the fleet itself, every step allowed by its supervisor; the explanation names
+``bot2.go``, not "a robot". Its cost is the counted system's, a few breadth-first layers of
+it, never the fleet's exponential state space."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from robosc.language.render import literal
+from robosc.plant.network import Event
+from robosc.synthesis.result import Explanation, Restriction, Step
+from robosc.synthesis.state import NetworkState, describe, describe_parts
+from robosc.synthesis.symmetry import Agent, CountedSupervisor, Group, start_of
+from robosc.synthesis.why import Reasons, reasons
+
+
+def local_label(group: Group, index: int) -> str:
+    """A local state of a group's robots in words: its component's state, the states of its
+    communications that are busy, its variables."""
+    locations, values = group.local[index]
+    rep = group.rep
+    parts = [locations[0].name]
+    parts += [
+        f"{a.name.split('.')[-1]} {loc.name}" for a, loc in zip(rep.automata[1:], locations[1:], strict=True) if loc is not a.initial
+    ]
+    parts += [f"{v.name} = {literal(value)}" for v, value in zip(rep.variables, values, strict=True)]
+    return ", ".join(parts)
+
+
+def describer(supervisor: CountedSupervisor) -> Callable[[NetworkState], str]:
+    """A counted network's state in words: the shared components as usual, and for each group
+    how many of its robots are in each local state (``bot: 2 in depot, 1 in out1``)."""
+    fleet = supervisor.fleet
+    counted = fleet.network
+    counters = {c for group in fleet.groups for c in group.counters}
+
+    def words(state: NetworkState) -> str:
+        parts = describe_parts(
+            ((a, loc) for a, loc in zip(counted.automata, state.locations, strict=True) if not a.name.startswith("#")),
+            ((v, x) for v, x in zip(counted.variables, state.values, strict=True) if v not in counters),
+        )
+        values = dict(zip(counted.variables, state.values, strict=True))
+        for group in fleet.groups:
+            held = [f"{values[c]} in {local_label(group, i)}" for i, c in enumerate(group.counters) if values[c]]
+            parts.append(f"{group.name}: {'; '.join(held)}")
+        return ", ".join(parts)
+
+    return words
+
+
+class Robots:
+    """A run of the counted network followed with the fleet's robots: which robot is in which
+    local state, and the fleet's state and events that go with each counted step."""
+
+    def __init__(self, supervisor: CountedSupervisor) -> None:
+        self.supervisor = supervisor
+        self.network = supervisor.network
+        fleet = supervisor.fleet
+        self.where: dict[int, int] = {}  # agent (id) -> index of its local state
+        self.owner: dict[str, tuple[Group, Agent, int]] = {}  # automaton name -> its agent, its place
+        for group in fleet.groups:
+            index = supervisor.index[group.name]
+            for agent in group.agents:
+                self.where[id(agent)] = index[start_of(self.network, group, agent)]
+                for place, automaton in enumerate(agent.automata):
+                    self.owner[automaton.name] = (group, agent, place)
+        self.back = {
+            id(agent): {rep: mine for mine, rep in group.to_rep[id(agent)].items()}
+            for group in fleet.groups
+            for agent in group.agents
+        }
+        self.counted_at = {a.name: i for i, a in enumerate(fleet.network.automata)}
+        self.counted_value = {v: i for i, v in enumerate(fleet.network.variables)}
+
+    def step(
+        self, event: Event, reached: NetworkState, prefer: Event | None = None, spare: Event | None = None
+    ) -> tuple[Event, NetworkState]:
+        """The fleet's event for counted ``event`` and the fleet's state after it: the first robot
+        in its source state moves; the robot of ``prefer`` if it is there; the robot of
+        ``spare`` only if no other is there (kept for the restricted event at the end)."""
+        move = self.supervisor.fleet.moves.get(event)
+        if move is not None:
+            group, local = move
+            here = [a for a in group.agents if self.where[id(a)] == local.source]
+            wanted = self.agent(prefer)
+            kept = self.agent(spare)
+            agent = wanted if wanted in here else next((a for a in here if a is not kept), here[0])
+            self.where[id(agent)] = local.target
+            event = self.back[id(agent)][local.event]
+        return event, self.state(reached)
+
+    def agent(self, event: Event | None) -> Agent | None:
+        owner = self.supervisor.agent_of_event.get(event) if event is not None else None
+        return owner[1] if owner is not None else None
+
+    def state(self, counted: NetworkState) -> NetworkState:
+        """The fleet's state: shared parts from the counted state, each robot's from where it is."""
+        groups = {g.name: g for g in self.supervisor.fleet.groups}
+        locations = []
+        for automaton in self.network.automata:
+            owner = self.owner.get(automaton.name)
+            if owner is None:
+                locations.append(counted.locations[self.counted_at[automaton.name]])
+                continue
+            group, agent, place = owner
+            rep_location = groups[group.name].local[self.where[id(agent)]][0][place]
+            locations.append(self.back[id(agent)][rep_location])
+        values = []
+        for variable in self.network.variables:
+            if variable in self.counted_value:
+                values.append(counted.values[self.counted_value[variable]])
+                continue
+            found = self._agent_value(variable)
+            values.append(found)
+        return NetworkState(tuple(locations), tuple(values))
+
+    def _agent_value(self, variable: Any) -> object:
+        for group in self.supervisor.fleet.groups:
+            for agent in group.agents:
+                if variable in agent.variables:
+                    place = agent.variables.index(variable)
+                    return group.local[self.where[id(agent)]][1][place]
+        raise KeyError(variable.name)
+
+
+def counted_events(supervisor: CountedSupervisor, fp: Any, event: Event) -> list[Event]:
+    """The counted network's events for ``event``: one per local state its robot may do it from."""
+    owner = supervisor.agent_of_event.get(event)
+    if owner is None:
+        return [event] if event in fp.allowed else []
+    group, agent = owner
+    return supervisor.counted_events.get(group.to_rep[id(agent)][event], [])
+
+
+def counted_reasons(fp: Any, candidates: list[Event]) -> list[Reasons]:
+    """The counted explanations of those of ``candidates`` the supervisor restricts."""
+    found = []
+    for candidate in candidates:
+        key = ("counted reasons", candidate)
+        if key not in fp.memo:
+            fp.memo[key] = reasons(fp, candidate)
+        if fp.memo[key] is not None:
+            found.append(fp.memo[key])
+    return found
+
+
+def counted_why(result: Any, event: Event) -> Restriction | None:
+    """Why the supervisor of a counted fleet disables ``event`` (of the fleet's network)
+    somewhere its plant and requirements allow it, with the fleet's robots named; None when it
+    never does. When the robot of ``event`` cannot be the one restricted in that run (robots
+    that start elsewhere), the run is shown for the robot that is, and the restriction says so."""
+    supervisor: CountedSupervisor = result.details["supervisor"]
+    fp = result.details["counted"]
+    candidates = counted_events(supervisor, fp, event)
+    found = counted_reasons(fp, candidates)
+    if not found:
+        return None
+    best = min(found, key=lambda r: len(r.run))
+    network = supervisor.network
+    robots = Robots(supervisor)
+    run = [robots.step(e, reached, spare=event) for e, reached in best.run]
+    state = robots.state(best.state)
+    restricted, after = robots.step(best.event, best.after, prefer=event)
+    consequence = [robots.step(e, reached) for e, reached in best.consequence]
+
+    def steps(path: list[tuple[Event, NetworkState]]) -> tuple[Step, ...]:
+        return tuple(Step(e, describe(network, reached)) for e, reached in path)
+
+    explanation = Explanation(best.reason, describe(network, after), steps(consequence), best.fixes)
+    owner = supervisor.agent_of_event.get(event)
+    alike = ""
+    if owner is not None:
+        names = [a.component.name for a in owner[0].agents]
+        alike = f"the same for every robot of {owner[0].name} ({names[0]} .. {names[-1]})"
+        if restricted is not event:
+            alike += f"; shown for {restricted.name}, as {event.name} cannot be the one restricted here"
+    return Restriction(
+        restricted,
+        steps(run),
+        describe(network, state),
+        describe(network, after),
+        explanation,
+        all((fp.allowed[c] & fp.reachable) == fp.enc.false for c in candidates),  # from no local state
+        alike,
+    )
