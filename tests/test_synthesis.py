@@ -491,7 +491,9 @@ def test_conditions_kept_apart_from_the_relations_give_the_same_supervisor(monke
     assert explicit.reachable_states == results[0][0]
 
 
-@pytest.mark.parametrize("order", ["interaction", "model", "sorted", "reverse"])
+@pytest.mark.parametrize(
+    "order", ["interaction", "model", "sorted", "reverse", "model->force", "sorted->force->slidwin", "interaction->reverse"]
+)
 @pytest.mark.parametrize("reorder", [False, True])
 def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool) -> None:
     import families
@@ -519,3 +521,26 @@ def test_an_unknown_order_is_refused() -> None:
 
     with pytest.raises(ValueError, match="unknown variable order 'random'"):
         SynthesisOptions("random")
+    with pytest.raises(ValueError, match="unknown order improvement 'dcsh'"):
+        SynthesisOptions("model->dcsh")
+
+
+def test_force_and_sliding_window_bring_what_interacts_together() -> None:
+    """On a transfer line the model's order puts every machine before every buffer: FORCE pulls
+    each buffer next to its two machines (ESCET's measure, the total span, falls), and the
+    sliding window never makes it worse; both keep every item exactly once."""
+    import families
+    from robosc.synthesis.ordering import force, hyperedges, initial_order, sliding_window, total_span
+
+    network = build_network(load(families.transfer_line(12)))
+    model_order = initial_order(network, "model")
+    edges = hyperedges(network, model_order)
+    start = list(range(len(model_order)))
+    forced = force(start, edges)
+    windowed = sliding_window(forced, edges)
+    assert sorted(forced) == start and sorted(windowed) == start
+    assert total_span(forced, edges) < total_span(start, edges) / 2
+    assert total_span(windowed, edges) <= total_span(forced, edges)
+    shuffled = start[1::2] + start[0::2]
+    assert total_span(sliding_window(shuffled, edges), edges) < total_span(shuffled, edges)
+    assert initial_order(network, "model->force->slidwin") == [model_order[i] for i in windowed]

@@ -13,7 +13,7 @@ from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
-from robosc.synthesis.options import FLEETS, ORDERS, SynthesisOptions
+from robosc.synthesis.options import FLEETS, IMPROVEMENTS, ORDERS, SynthesisOptions, order_problem
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
 from robosc.wrapping import fill
@@ -160,6 +160,13 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
             f"{len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events; {verdict}", "    ")
 
 
+def _order(context: click.Context, parameter: click.Parameter, value: str) -> str:
+    problem = order_problem(value)
+    if problem is not None:
+        raise click.BadParameter(problem, context, parameter)
+    return value
+
+
 @click.command()
 @click.argument("file", type=click.Path())
 @include_option
@@ -168,10 +175,12 @@ def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None
 @click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
 @click.option(
     "--order",
-    type=click.Choice(list(ORDERS)),
     default="interaction",
     show_default=True,
-    help="The initial BDD variable order (docs/synthesis-options.md): speed and memory only, never the result.",
+    callback=_order,
+    help=f"The BDD variable order (docs/synthesis-options.md): one of {', '.join(ORDERS)}, optionally followed by "
+    f"improvements, each after '->': {', '.join(IMPROVEMENTS)} (e.g. 'interaction->force->slidwin'). Speed and "
+    "memory only, never the result.",
 )
 @click.option(
     "--reorder",

@@ -16,6 +16,25 @@ ORDERS = {
     "reverse": "the interaction order reversed",
 }
 
+IMPROVEMENTS = {
+    "force": "FORCE: each group of things an event ties together pulls its members to its centre, "
+    "repeatedly, keeping the order where they are closest (the smallest total span)",
+    "slidwin": "sliding window: every 4 neighbours in the order tried in each of their 24 orders, "
+    "keeping the one with the smallest total span",
+    "reverse": "the order so far, reversed",
+}
+
+
+def order_problem(order: str) -> str | None:
+    """Why ``order`` is not an order (an initial order, then improvements, joined by '->')."""
+    first, *then = [part.strip() for part in order.split("->")]
+    if first not in ORDERS:
+        return f"unknown variable order '{first}' (one of {', '.join(ORDERS)})"
+    for step in then:
+        if step not in IMPROVEMENTS:
+            return f"unknown order improvement '{step}' (one of {', '.join(IMPROVEMENTS)})"
+    return None
+
 
 FLEETS = {
     "counted": "where three or more components are copies of each other (the instances of `component bot[N]`, "
@@ -27,7 +46,8 @@ FLEETS = {
 
 @record
 class SynthesisOptions:
-    """``order``: the initial BDD variable order, one of :data:`ORDERS`. ``reorder``: let CUDD
+    """``order``: the initial BDD variable order, one of :data:`ORDERS`, optionally followed by
+    improvements of :data:`IMPROVEMENTS` (``"interaction->force->slidwin"``). ``reorder``: let CUDD
     improve the order while it works (dynamic sifting): far fewer BDD nodes and less memory on
     large models, usually more time. ``fleet``: how fleets of identical robots are synthesized,
     one of :data:`FLEETS`."""
@@ -37,8 +57,9 @@ class SynthesisOptions:
     fleet: str = "counted"
 
     def __post_init__(self) -> None:
-        if self.order not in ORDERS:
-            raise ValueError(f"unknown variable order '{self.order}' (one of {', '.join(ORDERS)})")
+        problem = order_problem(self.order)
+        if problem is not None:
+            raise ValueError(problem)
         if self.fleet not in FLEETS:
             raise ValueError(f"unknown fleet method '{self.fleet}' (one of {', '.join(FLEETS)})")
 

@@ -1,0 +1,85 @@
+"""BDD variable orders side by side (docs/synthesis-options.md): for each model and each order
+pipeline, the total span of the order (Eclipse ESCET's measure: how far apart what interacts
+is), synthesis time, peak live BDD nodes and peak memory. Each run is a process of its own
+with a time limit; every order must give the same number of controlled states.
+
+Run:  python benchmarks/orders.py [--timeout 120] [--orders interaction,interaction->force,...]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+MODELS = {
+    "transfer line 32": ("transfer_line", 32, "monolithic"),
+    "philosophers 14": ("philosophers", 14, "monolithic"),
+    "ring 7 (copies, monolithic)": ("ring", 7, "monolithic"),
+    "warehouse 5 (copies, monolithic)": ("warehouse", 5, "monolithic"),
+    "ring 16 (instances, counted)": ("ring_instances", 16, "counted"),
+}
+ORDERS = "interaction,model,interaction->force,interaction->force->slidwin,model->force->slidwin,sorted->force->slidwin"
+
+RUN = r"""
+import json, resource, sys, time
+sys.path.insert(0, sys.argv[1])
+import families
+from robosc.api import check_text, synthesize_model
+from robosc.plant import build_network
+from robosc.synthesis.options import SynthesisOptions
+from robosc.synthesis.ordering import hyperedges, initial_order, total_span
+family, n, fleet, order = sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+model = check_text(getattr(families, family)(n)).model
+network = build_network(model)
+start = time.perf_counter()
+items = initial_order(network, order)
+ordered = time.perf_counter() - start
+span = total_span(list(range(len(items))), hyperedges(network, items))
+result = synthesize_model(model, options=SynthesisOptions(order=order, fleet=fleet))
+done = time.perf_counter() - start
+print(json.dumps({"span": span, "order_s": ordered, "s": done, "states": result.reachable_states,
+    "mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **result.details["effort"]}))
+"""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--timeout", type=float, default=120.0)
+    parser.add_argument("--orders", default=ORDERS)
+    parser.add_argument("--models", default=",".join(MODELS))
+    args = parser.parse_args()
+    print(f"limit: {args.timeout:g} s per run\n")
+    print("| model | order | total span | order s | synthesis s | peak live nodes | peak MB | controlled states |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for name in args.models.split(","):
+        family, n, fleet = MODELS[name]
+        states = set()
+        for order in args.orders.split(","):
+            try:
+                done = subprocess.run(
+                    [sys.executable, "-c", RUN, str(HERE), family, str(n), fleet, order],
+                    capture_output=True, text=True, timeout=args.timeout, check=False,
+                )
+            except subprocess.TimeoutExpired:
+                print(f"| {name} | `{order}` | | | over {args.timeout:g} s | | | |", flush=True)
+                continue
+            if done.returncode != 0:
+                print(f"| {name} | `{order}` | | | failed: {done.stderr.strip().splitlines()[-1][:60]} | | | |", flush=True)
+                continue
+            f = json.loads(done.stdout.strip().splitlines()[-1])
+            states.add(f["states"])
+            print(
+                f"| {name} | `{order}` | {f['span']:,} | {f['order_s']:.2f} | {f['s']:.2f} | {f['peak_live_nodes']:,} "
+                f"| {f['mb']:.0f} | {f['states']:,} |",
+                flush=True,
+            )
+        assert len(states) <= 1, f"{name}: the orders disagree on the controlled states: {states}"
+
+
+if __name__ == "__main__":
+    main()
