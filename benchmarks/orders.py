@@ -1,5 +1,5 @@
 """BDD variable orders side by side (docs/synthesis-options.md): for each model and each order
-pipeline, the total span of the order (Eclipse ESCET's measure: how far apart what interacts
+pipeline (``ORDER@EDGES`` also sets the edge order, e.g. ``interaction@reverse``), the total span of the order (Eclipse ESCET's measure: how far apart what interacts
 is), synthesis time, peak live BDD nodes and peak memory. Each run is a process of its own
 with a time limit; every order must give the same number of controlled states.
 
@@ -33,14 +33,15 @@ from robosc.api import check_text, synthesize_model
 from robosc.plant import build_network
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.ordering import hyperedges, initial_order, total_span
-family, n, fleet, order = sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+family, n, fleet, spec = sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+order, _, edges = spec.partition("@")
 model = check_text(getattr(families, family)(n)).model
 network = build_network(model)
 start = time.perf_counter()
 items = initial_order(network, order)
 ordered = time.perf_counter() - start
 span = total_span(list(range(len(items))), hyperedges(network, items))
-result = synthesize_model(model, options=SynthesisOptions(order=order, fleet=fleet))
+result = synthesize_model(model, options=SynthesisOptions(order=order, fleet=fleet, edges=edges or "model"))
 done = time.perf_counter() - start
 print(json.dumps({"span": span, "order_s": ordered, "s": done, "states": result.reachable_states,
     "mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **result.details["effort"]}))

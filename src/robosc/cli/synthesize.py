@@ -13,7 +13,7 @@ from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
-from robosc.synthesis.options import FLEETS, IMPROVEMENTS, ORDERS, SynthesisOptions, order_problem
+from robosc.synthesis.options import EDGE_ORDERS, FLEETS, IMPROVEMENTS, ORDERS, SynthesisOptions, order_problem
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
 from robosc.wrapping import fill
@@ -188,6 +188,14 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
     help="Let CUDD improve the variable order while it works (dynamic sifting): less memory, usually more time.",
 )
 @click.option(
+    "--edge-order",
+    "edges",
+    type=click.Choice(list(EDGE_ORDERS)),
+    default="model",
+    show_default=True,
+    help="The order in which the fixed points apply the events (docs/synthesis-options.md): speed only.",
+)
+@click.option(
     "--fleet",
     type=click.Choice(list(FLEETS)),
     default="counted",
@@ -208,13 +216,14 @@ def synthesize(
     show_network: bool,
     order: str,
     reorder: bool,
+    edges: str,
     fleet: str,
     stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    options = SynthesisOptions(order, reorder, fleet)
+    options = SynthesisOptions(order, reorder, fleet, edges)
     result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
     cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
     if show_network:

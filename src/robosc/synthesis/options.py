@@ -36,6 +36,14 @@ def order_problem(order: str) -> str | None:
     return None
 
 
+EDGE_ORDERS = {
+    "model": "the network's order: each component's events as its transitions name them, a message's "
+    "answers right after it (the default)",
+    "reverse": "the model's order reversed",
+    "sorted": "by name",
+}
+
+
 FLEETS = {
     "counted": "where three or more components are copies of each other (the instances of `component bot[N]`, "
     "or components copied by hand) and the requirements treat them alike, count how many are in each state "
@@ -50,16 +58,21 @@ class SynthesisOptions:
     improvements of :data:`IMPROVEMENTS` (``"interaction->force->slidwin"``). ``reorder``: let CUDD
     improve the order while it works (dynamic sifting): far fewer BDD nodes and less memory on
     large models, usually more time. ``fleet``: how fleets of identical robots are synthesized,
-    one of :data:`FLEETS`."""
+    one of :data:`FLEETS`. ``edges``: the order in which the fixed points apply the events, one
+    of :data:`EDGE_ORDERS` (each event's image is added before the next is applied, so the
+    order decides how far one round gets)."""
 
     order: str = "interaction"
     reorder: bool = False
     fleet: str = "counted"
+    edges: str = "model"
 
     def __post_init__(self) -> None:
         problem = order_problem(self.order)
         if problem is not None:
             raise ValueError(problem)
+        if self.edges not in EDGE_ORDERS:
+            raise ValueError(f"unknown edge order '{self.edges}' (one of {', '.join(EDGE_ORDERS)})")
         if self.fleet not in FLEETS:
             raise ValueError(f"unknown fleet method '{self.fleet}' (one of {', '.join(FLEETS)})")
 
