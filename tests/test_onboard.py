@@ -195,6 +195,11 @@ def test_a_command_nobody_subscribes_to_is_held_not_performed() -> None:
     node.listening = True  # the robot subscribes
     node.cycle()
     assert [name for name, _ in node.published] == ["/rotate_left"]
+    layer = line_follower("supervisor")  # a supervision layer forwards only to a robot that listens
+    layer.receive(layer.inputs["/emergency_stop/stop"], None)
+    layer.listening = False
+    assert layer.request(layer.outputs["/cmd_vel"], Twist(0.0, 0.0)) is False
+    assert layer.published == [] and layer.blocked_reports()[-1]["reason"] == "nothing subscribes to /cmd_vel"
     waived = FakeNode("examples/maze_solver.rscd", "controller", wait_for_listeners=False, tick_on_message=True)
     waived.listening = False
     waived.receive(waived.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))

@@ -222,6 +222,7 @@ class NodeCore(object):
             else:
                 log("error", "parameter refused: event_log %r cannot be written (%s); no event log" % (path, why))
         self.blocked_count = self.forwarded_count = 0
+        self.refused: Optional[str] = None  # why send() refused the command being forwarded, if it did
         self.text_publishers: Dict[str, Any] = {}  # made by the adapter
         self.text_type: Any = None
         self._plan_routes(robot_class)
@@ -475,6 +476,7 @@ class NodeCore(object):
                 # a message nobody subscribes to is lost, and the supervisor would believe the
                 # robot got it (a robot not up yet, a link down): hold the command instead
                 self.warnings("held: %s: nothing subscribes to %s" % (name, topic.name), "unheard " + name)
+                self.refused = "nothing subscribes to %s" % topic.name
                 return False
             if self.mode == "supervisor":
                 message = data  # the controller's own message, already checked
@@ -514,6 +516,7 @@ class NodeCore(object):
         data it is exactly (see :func:`messages.conforms`) and that the supervisor allows now,
         else blocked and reported. Never forwarded as an event whose data it is not."""
         found = self.events_of(message, topic.events, topic.name)
+        self.refused = None
         for event in found:
             if self.supervisor.perform(event.name, message):
                 self.forwarded_count += 1
@@ -552,9 +555,8 @@ class NodeCore(object):
             why = "is the data of no event on it now" if finite(message) else "a number in it is not finite"
             self.blocked(None, where, why, message)
             return
-        self.blocked(
-            found[0].name, where, self.supervisor.holds(found[0].name) or "the supervisor does not allow it now", message
-        )
+        why = self.supervisor.holds(found[0].name) or self.refused or "the supervisor does not allow it now"
+        self.blocked(found[0].name, where, why, message)
 
     def blocked(self, event: Optional[str], where: str, reason: str, data: Any = None) -> None:
         """Report a blocked request on ``blocked`` (JSON) and in the log (rate-limited)."""
