@@ -370,6 +370,11 @@ def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
         assert mine.never == theirs.never and len(mine.path) == len(theirs.path), event
         assert "the same for every robot of bot (bot1 .. bot3)" in mine.note
         replay(mono, mine)
+        # what goes wrong is told as the monolithic method tells it (maybe of other robots)
+        assert mine.consequence.reason.split(" from state [")[0] == theirs.consequence.reason.split(" from state [")[0]
+        assert [f.span for f in mine.consequence.fixes] == [f.span for f in theirs.consequence.fixes]
+        if "stuck outside" in theirs.consequence.reason:
+            assert "stuck outside a marked state: bot" in mine.consequence.reason
     assert {(d.code, d.span) for d in synthesis_warnings(fleet)} == {(d.code, d.span) for d in synthesis_warnings(mono)}
 
 

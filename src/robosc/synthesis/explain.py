@@ -5,12 +5,12 @@ event would lead to, see :mod:`robosc.synthesis.why`)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 from robosc.language import model as m
 from robosc.language.render import render
-from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Requirement
+from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network, Requirement
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
 from robosc.synthesis.result import Explanation, Fix, Step
@@ -105,10 +105,10 @@ def explain_path(
     trapped = fp.memo.get(("trapped", last))
     if trapped is not None:
         found += fixes(fp, trapped)
-    return pick(fp, start), path, reason, _likeliest(found)
+    return pick(fp, start), path, reason, likeliest(found)
 
 
-def _likeliest(found: list[Fix]) -> tuple[Fix, ...]:
+def likeliest(found: list[Fix]) -> tuple[Fix, ...]:
     """The fixes once each, a missing transition first: where one is missing, a requirement
     that shuts a way out is its consequence, not the cause, and is left out."""
     unique = list(dict.fromkeys(found))
@@ -125,13 +125,34 @@ class _Exit:
     requirement: Requirement | None = None
 
 
+@record(eq=False)
+class Probe:
+    """What the explanations ask of a state: whether the plant lets ``event`` happen in it, and
+    whether ``requirement`` holds in it; answered from a synthesis' BDDs (:func:`probe`), or
+    state by state on a fleet whose synthesis counted its robots (robosc.synthesis.fleet_why)."""
+
+    network: Network
+    enabled: Callable[[Event, NetworkState], bool]
+    holds: Callable[[Requirement, NetworkState], bool]
+
+
+def probe(fp: Any) -> Probe:
+    """The :class:`Probe` of a synthesis' fixed point."""
+    enc = fp.enc
+    return Probe(
+        enc.network,
+        lambda event, state: (fp.state(state) & fp.enabled[event]) != enc.false,
+        lambda requirement, state: (fp.state(state) & enc.boolean(requirement.condition)) != enc.false,
+    )
+
+
 def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[_Exit]]]:
     """The components stuck outside a marked state in ``state``, each with its ways out and
     what stops each. One that waits for an uncontrollable event that can happen here is not
-    stuck (it leaves when the event comes), so it is not named."""
-    enc = fp.enc
-    network = enc.network
-    where = fp.state(state)
+    stuck (it leaves when the event comes), so it is not named. ``fp``: a fixed point or a
+    :class:`Probe`."""
+    asked = fp if isinstance(fp, Probe) else probe(fp)
+    network = asked.network
     found = []
     for automaton, location in zip(network.automata, state.locations, strict=True):
         if location.marked or automaton.kind is not AutomatonKind.COMPONENT:
@@ -141,11 +162,11 @@ def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[
             if edge.source is not location or edge.target is location:
                 continue
             event = edge.event
-            possible = (where & fp.enabled[event]) != enc.false
+            possible = asked.enabled(event, state)
             if not event.controllable:
                 exits.append(_Exit(event, "can happen" if possible else "cannot happen"))
                 continue
-            broken = [r for r in network.requirements_on(event) if (where & enc.boolean(r.condition)) == enc.false]
+            broken = [r for r in network.requirements_on(event) if not asked.holds(r, state)]
             if broken:
                 exits.append(_Exit(event, "forbidden", broken[0]))
             else:
@@ -182,8 +203,9 @@ def fixes(fp: Any, state: NetworkState) -> list[Fix]:
     """Small changes to the model that would let the components stuck in ``state`` go on:
     a transition for an uncontrollable result the component never handles (a service or
     action failing while the component waits for its response), a requirement that shuts the
-    only way out, a state that has no way out and is not marked."""
-    network = fp.enc.network
+    only way out, a state that has no way out and is not marked. ``fp``: a fixed point or a
+    :class:`Probe`."""
+    network = fp.network if isinstance(fp, Probe) else fp.enc.network
     plants = {a.name: (a, loc) for a, loc in zip(network.automata, state.locations, strict=True)}
     found: list[Fix] = []
     for automaton, location, exits in _stuck(fp, state):
@@ -279,20 +301,32 @@ def _trap(fp: Any, state: NetworkState) -> str | None:
 
 
 def _reason(fp: Any, state: NetworkState, failed: bool = False) -> str:
-    enc = fp.enc
-    network = enc.network
-    where = fp.state(state)
+    described = fp.describe(state)
+    return breaking(probe(fp), state, described, failed) or blocking(fp, state, described, _trap(fp, state))
+
+
+def breaking(asked: Probe, state: NetworkState, described: str, failed: bool = False) -> str | None:
+    """Why ``state`` must be avoided when an uncontrollable event can break a requirement in it,
+    in words; None when none can."""
+    network = asked.network
     for event in network.uncontrollable:
-        if (where & fp.enabled[event]) == enc.false:
+        if not asked.enabled(event, state):
             continue
         for requirement in network.requirements_on(event):
-            if (where & ~enc.boolean(requirement.condition)) != enc.false:
+            if not asked.holds(requirement, state):
                 return (
-                    f"in state [{fp.describe(state)}] the uncontrollable event '{event.name}' can happen, "
+                    f"in state [{described}] the uncontrollable event '{event.name}' can happen, "
                     f"but {requirement.description} does not hold there ({render(requirement.condition)} is false); "
                     "a supervisor cannot prevent uncontrollable events, so it must keep the system out of this state"
                     + (", and it cannot" if failed else "")
                 )
+    return None
+
+
+def blocking(fp: Any, state: NetworkState, described: str, trap: str | None = None) -> str:
+    """Why ``state`` blocks, in words: the components stuck outside a marked state, how each
+    could leave and what stops it. ``fp``: a fixed point or a :class:`Probe`."""
+    network = fp.network if isinstance(fp, Probe) else fp.enc.network
     unmarked = [
         (a.kind is not AutomatonKind.COMPONENT, f"{a.name}.{loc.name}")
         for a, loc in zip(network.automata, state.locations, strict=True)
@@ -303,10 +337,9 @@ def _reason(fp: Any, state: NetworkState, failed: bool = False) -> str:
     stuck = f" (stuck outside a marked state: {', '.join(names)})" if names else ""
     exits = _exits(fp, state)
     because = f": {'; '.join(exits)}" if exits else ""
-    trap = _trap(fp, state)
     if trap:
         because += f". {trap}"
     return (
-        f"the system would block: from state [{fp.describe(state)}]{stuck} no sequence of events that the "
+        f"the system would block: from state [{described}]{stuck} no sequence of events that the "
         f"requirements allow leads to a state where every component is in a marked state{because}"
     )

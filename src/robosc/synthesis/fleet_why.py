@@ -16,7 +16,10 @@ from collections.abc import Callable
 from typing import Any
 
 from robosc.language.render import literal
-from robosc.plant.network import Event
+from robosc.plant.network import Event, Network, Requirement
+from robosc.synthesis.evaluate import Undefined, evaluate
+from robosc.synthesis.explain import Probe, blocking, breaking, fixes, likeliest
+from robosc.synthesis.explicit import successors
 from robosc.synthesis.result import Explanation, Restriction, Step
 from robosc.synthesis.state import NetworkState, describe, describe_parts
 from robosc.synthesis.symmetry import Agent, CountedSupervisor, Group, start_of
@@ -132,6 +135,19 @@ class Robots:
         raise KeyError(variable.name)
 
 
+def explicit_probe(network: Network) -> Probe:
+    """A :class:`Probe` of the fleet's own network, asked state by state (its states are too
+    many for BDDs over each robot, but one state is cheap to ask about)."""
+
+    def holds(requirement: Requirement, state: NetworkState) -> bool:
+        try:
+            return bool(evaluate(requirement.condition, set(state.locations), dict(zip(network.variables, state.values, strict=True))))
+        except Undefined:
+            return False
+
+    return Probe(network, lambda event, state: next(successors(network, state, event), None) is not None, holds)
+
+
 def counted_events(supervisor: CountedSupervisor, fp: Any, event: Event) -> list[Event]:
     """The counted network's events for ``event``: one per local state its robot may do it from."""
     owner = supervisor.agent_of_event.get(event)
@@ -175,7 +191,12 @@ def counted_why(result: Any, event: Event) -> Restriction | None:
     def steps(path: list[tuple[Event, NetworkState]]) -> tuple[Step, ...]:
         return tuple(Step(e, describe(network, reached)) for e, reached in path)
 
-    explanation = Explanation(best.reason, describe(network, after), steps(consequence), best.fixes)
+    last = consequence[-1][1] if consequence else after  # where it breaks a requirement, or blocks
+    asked = explicit_probe(network)
+    described = describe(network, last)
+    reason = breaking(asked, last, described) or blocking(asked, last, described)
+    found_fixes = likeliest(fixes(asked, last)) if reason.startswith("the system would block") else ()
+    explanation = Explanation(reason, describe(network, after), steps(consequence), found_fixes)
     owner = supervisor.agent_of_event.get(event)
     alike = ""
     if owner is not None:
