@@ -368,9 +368,10 @@ def test_node_serves_the_live_view(ros1: Ros1, tmp_path: Path) -> None:
     ros1.client(
         """
 start()
+lefts = Recorder("/rotate_left", Int16)  # the robot listens: the node sends it commands
 scan_pub = publisher("/scan", LaserScan)
 scan_pub.publish(scan([0.3] + [5.0] * 359))
-rospy.sleep(0.5)
+assert wait_for(lambda: lefts.messages(), 10), "no turn"
 done({})
 """
     )
