@@ -15,16 +15,21 @@ finish, a third run asserts that they found the same supervisor (each event allo
 same states, over the states the monolithic supervisor reaches): the last column.
 
 Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,8,16,32]
-          [--methods counted,monolithic] [--timeout 600] [--memory-gb 2]
+          [--methods counted,monolithic] [--timeout 600] [--memory-gb 2] [--baseline REV]
+
+With ``--baseline REV`` each method also runs from that revision's sources, in the same run
+(the machine's speed varies), its row marked ``METHOD@REV``.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -68,7 +73,18 @@ print(json.dumps({
 """
 
 
-def measure(family: str, n: int, method: str, timeout: float, memory_gb: float) -> dict[str, object]:
+def checkout(revision: str, work: Path) -> Path:
+    """The ``src`` folder of ``revision`` of this repository (git archive), to run it side by side."""
+    target = work / revision
+    target.mkdir(parents=True)
+    archive = subprocess.run(["git", "-C", str(HERE.parent), "archive", revision, "src"], capture_output=True, check=True)
+    subprocess.run(["tar", "-x", "-C", str(target)], input=archive.stdout, check=True)
+    return target / "src"
+
+
+def measure(
+    family: str, n: int, method: str, timeout: float, memory_gb: float, source: Path | None = None
+) -> dict[str, object]:
     limit = int(memory_gb * (1 << 30))
 
     def cap() -> None:
@@ -76,9 +92,10 @@ def measure(family: str, n: int, method: str, timeout: float, memory_gb: float) 
 
     start = time.perf_counter()
     try:
+        env = {**os.environ, "PYTHONPATH": str(source)} if source is not None else None
         done = subprocess.run(
             [sys.executable, "-c", RUN, str(HERE), family, str(n), method],
-            capture_output=True, text=True, timeout=timeout, preexec_fn=cap, check=False,
+            capture_output=True, text=True, timeout=timeout, preexec_fn=cap, check=False, env=env,
         )
     except subprocess.TimeoutExpired:
         return {"failed": f"over {timeout:g} s"}
@@ -98,7 +115,16 @@ def main() -> None:
     parser.add_argument("--methods", default="counted,monolithic")
     parser.add_argument("--timeout", type=float, default=600.0)
     parser.add_argument("--memory-gb", type=float, default=2.0)
+    parser.add_argument(
+        "--baseline", help="a git revision run side by side, its methods marked @REV (e.g. 14910d1, before this session)"
+    )
     args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as work:
+        baseline = checkout(args.baseline, Path(work)) if args.baseline else None
+        table(args, baseline)
+
+
+def table(args: argparse.Namespace, baseline: Path | None) -> None:
     sizes = [int(s) for s in args.sizes.split(",")]
     print(f"limits: {args.timeout:g} s and {args.memory_gb:g} GB of address space per run\n")
     print(
@@ -110,10 +136,21 @@ def main() -> None:
     for family in args.families.split(","):
         for n in sizes:
             finished = 0
-            for method in methods:
-                f = measure(family, n, method, args.timeout, args.memory_gb)
+            runs = [(m, m, None) for m in methods]
+            if baseline is not None:  # each method of this revision next to the baseline's
+                runs = [r for m in methods for r in ((m, m, None), (f"{m}@{args.baseline}", m, baseline))]
+            for label, method, source in runs:
+                f = measure(family, n, method, args.timeout, args.memory_gb, source)
                 if "failed" in f:
-                    print(f"| {family} | {n} | {method} | | | {f['failed']} | | | | | | |", flush=True)
+                    print(f"| {family} | {n} | {label} | | | {f['failed']} | | | | | | |", flush=True)
+                    continue
+                if source is not None:
+                    print(
+                        f"| {family} | {n} | {label} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
+                        f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
+                        f"{f.get('preimages', '-')} | {f['states']:,} | |",
+                        flush=True,
+                    )
                     continue
                 finished += 1
                 same = ""
@@ -121,7 +158,7 @@ def main() -> None:
                     check = measure(family, n, "check", args.timeout, args.memory_gb)
                     same = "yes (asserted)" if check.get("same") else f"NO: {check.get('failed')}"
                 print(
-                    f"| {family} | {n} | {method} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
+                    f"| {family} | {n} | {label} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
                     f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
                     f"{f.get('preimages', '-')} | {f['states']:,} | {same} |",
                     flush=True,

@@ -424,6 +424,9 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
     node = ros2.start(package, rate=20.0, view_port=port)
     scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     ros2.wait_subscribed(scan)
+    from std_msgs.msg import Int16
+
+    ros2.record(Int16, "/rotate_left")  # the robot listens: the node sends it commands
 
     def page() -> str:
         with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as response:
