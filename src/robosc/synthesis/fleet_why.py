@@ -70,12 +70,15 @@ class Robots:
         fleet = supervisor.fleet
         self.where: dict[int, int] = {}  # agent (id) -> index of its local state
         self.owner: dict[str, tuple[Group, Agent, int]] = {}  # automaton name -> its agent, its place
+        self.owner_of_variable: dict[Any, tuple[Group, Agent, int]] = {}  # an agent's variable -> the same
         for group in fleet.groups:
             index = supervisor.index[group.name]
             for agent in group.agents:
                 self.where[id(agent)] = index[start_of(self.network, group, agent)]
                 for place, automaton in enumerate(agent.automata):
                     self.owner[automaton.name] = (group, agent, place)
+                for place, variable in enumerate(agent.variables):
+                    self.owner_of_variable[variable] = (group, agent, place)
         self.back = {
             id(agent): {rep: mine for mine, rep in group.to_rep[id(agent)].items()}
             for group in fleet.groups
@@ -107,7 +110,6 @@ class Robots:
 
     def state(self, counted: NetworkState) -> NetworkState:
         """The fleet's state: shared parts from the counted state, each robot's from where it is."""
-        groups = {g.name: g for g in self.supervisor.fleet.groups}
         locations = []
         for automaton in self.network.automata:
             owner = self.owner.get(automaton.name)
@@ -115,24 +117,16 @@ class Robots:
                 locations.append(counted.locations[self.counted_at[automaton.name]])
                 continue
             group, agent, place = owner
-            rep_location = groups[group.name].local[self.where[id(agent)]][0][place]
-            locations.append(self.back[id(agent)][rep_location])
+            locations.append(self.back[id(agent)][group.local[self.where[id(agent)]][0][place]])
         values = []
         for variable in self.network.variables:
-            if variable in self.counted_value:
+            mine = self.owner_of_variable.get(variable)
+            if mine is None:
                 values.append(counted.values[self.counted_value[variable]])
                 continue
-            found = self._agent_value(variable)
-            values.append(found)
+            group, agent, place = mine
+            values.append(group.local[self.where[id(agent)]][1][place])
         return NetworkState(tuple(locations), tuple(values))
-
-    def _agent_value(self, variable: Any) -> object:
-        for group in self.supervisor.fleet.groups:
-            for agent in group.agents:
-                if variable in agent.variables:
-                    place = agent.variables.index(variable)
-                    return group.local[self.where[id(agent)]][1][place]
-        raise KeyError(variable.name)
 
 
 def explicit_probe(network: Network) -> Probe:
@@ -146,15 +140,6 @@ def explicit_probe(network: Network) -> Probe:
             return False
 
     return Probe(network, lambda event, state: next(successors(network, state, event), None) is not None, holds)
-
-
-def counted_events(supervisor: CountedSupervisor, fp: Any, event: Event) -> list[Event]:
-    """The counted network's events for ``event``: one per local state its robot may do it from."""
-    owner = supervisor.agent_of_event.get(event)
-    if owner is None:
-        return [event] if event in fp.allowed else []
-    group, agent = owner
-    return supervisor.counted_events.get(group.to_rep[id(agent)][event], [])
 
 
 def counted_reasons(fp: Any, candidates: list[Event]) -> list[Reasons]:
@@ -176,7 +161,7 @@ def counted_why(result: Any, event: Event) -> Restriction | None:
     that start elsewhere), the run is shown for the robot that is, and the restriction says so."""
     supervisor: CountedSupervisor = result.details["supervisor"]
     fp = result.details["counted"]
-    candidates = counted_events(supervisor, fp, event)
+    candidates = [c for c in supervisor.counted_of(event) if c in fp.allowed]
     found = counted_reasons(fp, candidates)
     if not found:
         return None

@@ -131,17 +131,14 @@ def force(order: list[int], edges: list[list[int]]) -> list[int]:
         for i in e:
             member_of.setdefault(i, []).append(k)
     best, best_span = order, total_span(order, edges)
-    current = order
-    for _ in range(max(10, 2 * len(order).bit_length() * 5)):
-        where = {item: k for k, item in enumerate(current)}
+    for _ in range(10 * max(1, len(order).bit_length())):  # ESCET: 10 * log2(n) rounds at the most
+        where = {item: k for k, item in enumerate(best)}
         centre = [sum(where[i] for i in e) / len(e) for e in edges]
-        pull = {i: sum(centre[k] for k in member_of[i]) / len(member_of[i]) if i in member_of else where[i] for i in current}
-        current = sorted(current, key=lambda i: (pull[i], where[i]))
+        pull = {i: sum(centre[k] for k in member_of[i]) / len(member_of[i]) if i in member_of else where[i] for i in best}
+        current = sorted(best, key=lambda i: (pull[i], where[i]))
         span = total_span(current, edges)
-        if span >= best_span:
-            if current == best:
-                break
-            continue
+        if span >= best_span:  # no better: done
+            break
         best, best_span = current, span
     return best
 

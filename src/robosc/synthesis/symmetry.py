@@ -682,6 +682,15 @@ class CountedSupervisor:
         mapping = group.to_rep[id(agent)]
         return tuple(mapping[where[a]] for a in agent.automata), tuple(values[v] for v in agent.variables)
 
+    def counted_of(self, event: Event) -> list[Event]:
+        """The counted network's events for ``event`` of the fleet: for a robot's event, one per
+        local state its robot may do it from; a shared event is its own."""
+        owner = self.agent_of_event.get(event)
+        if owner is None:
+            return [event]
+        group, agent = owner
+        return self.counted_events.get(group.to_rep[id(agent)][event], [])
+
     def allows(self, event: Event, state: Any) -> bool:
         here = self._state(state)
         fp, enc = self.fp, self.fp.enc
@@ -694,8 +703,7 @@ class CountedSupervisor:
         where = dict(zip(self.network.automata, state.locations, strict=True))
         values = dict(zip(self.network.variables, state.values, strict=True))
         source = self.index[group.name][self.local(group, agent, where, values)]
-        rep_event = group.to_rep[id(agent)][event]
-        for counted_event in self.counted_events.get(rep_event, ()):
+        for counted_event in self.counted_of(event):
             if self.fleet.moves[counted_event][1].source != source:
                 continue
             bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
@@ -793,13 +801,7 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         owner = supervisor.agent_of_event.get(event)
-        pairs: list[tuple[Event, int | None]]
-        if owner is None:
-            pairs = [(event, None)]
-        else:
-            group, agent = owner
-            rep_event = group.to_rep[id(agent)][event]
-            pairs = [(ce, fleet.moves[ce][1].source) for ce in supervisor.counted_events.get(rep_event, [])]
+        pairs = [(ce, fleet.moves[ce][1].source if owner is not None else None) for ce in supervisor.counted_of(event)]
         parts = []
         for counted_event, source in pairs:
             care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
