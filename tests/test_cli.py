@@ -204,3 +204,15 @@ def test_synthesize_stats_prints_effort_that_does_not_depend_on_the_machine() ->
     text = run_in(None, "synthesize", "--stats", str(EXAMPLES / "shelf_picker.rscd")).stdout
     assert f"effort: {first['peak_live_nodes']:,} peak live BDD nodes, {first['images']:,} images" in text
     assert "effort" not in json.loads(run_in(None, "synthesize", "--json", str(EXAMPLES / "shelf_picker.rscd")).stdout)
+
+
+def test_a_counted_fleet_is_explained_once_for_its_robots_and_in_json() -> None:
+    warehouse = str(Path(__file__).resolve().parent.parent / "examples/warehouse.rscd")
+    result = run("synthesize", warehouse)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.count("(the same for every robot of bot (bot1 .. bot3))") == 1
+    assert "      fix: requirement bot1.go needs bot1.out1 => " in result.stdout
+    data = json.loads(run("synthesize", "--json", warehouse).stdout)
+    why = {e["event"]: e["why"] for e in data["events"] if e["why"] is not None}
+    assert sorted(why) == ["bot1.go", "bot2.go", "bot3.go"]
+    assert all(w["note"].startswith("the same for every robot of bot") and len(w["path"]) == 4 for w in why.values())

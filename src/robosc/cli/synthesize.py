@@ -39,6 +39,7 @@ def _why(restriction: Restriction | None) -> dict[str, Any] | None:
         return None
     return {
         "never": restriction.never,
+        "note": restriction.note,
         "path": [{"event": s.event.name, "state": s.state} for s in restriction.path],
         "state": restriction.state,
         "after": restriction.after,

@@ -75,7 +75,7 @@ class Restriction:
     after: str
     consequence: Explanation
     never: bool = False
-    note: str = ""  # a fleet's: the robot the run is shown for, when another's event was asked about
+    note: str = ""  # a counted fleet's: that its robots are restricted alike, and for which robot the run is told
 
 
 @record
