@@ -200,6 +200,9 @@ def test_a_command_nobody_subscribes_to_is_held_not_performed() -> None:
     layer.listening = False
     assert layer.request(layer.outputs["/cmd_vel"], Twist(0.0, 0.0)) is False
     assert layer.published == [] and layer.blocked_reports()[-1]["reason"] == "nothing subscribes to /cmd_vel"
+    layer.listening = True  # the next refusal is the supervisor's own, and says so
+    assert layer.request(layer.outputs["/cmd_vel"], Twist(0.15, -0.1)) is False
+    assert layer.blocked_reports()[-1]["reason"] == "the supervisor does not allow it now"
     waived = FakeNode("examples/maze_solver.rscd", "controller", wait_for_listeners=False, tick_on_message=True)
     waived.listening = False
     waived.receive(waived.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))

@@ -146,12 +146,17 @@ def probe(fp: Any) -> Probe:
     )
 
 
+def _asked(fp: Any) -> Probe:
+    """``fp`` itself when it is a :class:`Probe`, else the probe of a fixed point."""
+    return fp if isinstance(fp, Probe) else probe(fp)
+
+
 def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[_Exit]]]:
     """The components stuck outside a marked state in ``state``, each with its ways out and
     what stops each. One that waits for an uncontrollable event that can happen here is not
     stuck (it leaves when the event comes), so it is not named. ``fp``: a fixed point or a
     :class:`Probe`."""
-    asked = fp if isinstance(fp, Probe) else probe(fp)
+    asked = _asked(fp)
     network = asked.network
     found = []
     for automaton, location in zip(network.automata, state.locations, strict=True):
@@ -205,7 +210,7 @@ def fixes(fp: Any, state: NetworkState) -> list[Fix]:
     action failing while the component waits for its response), a requirement that shuts the
     only way out, a state that has no way out and is not marked. ``fp``: a fixed point or a
     :class:`Probe`."""
-    network = fp.network if isinstance(fp, Probe) else fp.enc.network
+    network = _asked(fp).network
     plants = {a.name: (a, loc) for a, loc in zip(network.automata, state.locations, strict=True)}
     found: list[Fix] = []
     for automaton, location, exits in _stuck(fp, state):
@@ -326,7 +331,7 @@ def breaking(asked: Probe, state: NetworkState, described: str, failed: bool = F
 def blocking(fp: Any, state: NetworkState, described: str, trap: str | None = None) -> str:
     """Why ``state`` blocks, in words: the components stuck outside a marked state, how each
     could leave and what stops it. ``fp``: a fixed point or a :class:`Probe`."""
-    network = fp.network if isinstance(fp, Probe) else fp.enc.network
+    network = _asked(fp).network
     unmarked = [
         (a.kind is not AutomatonKind.COMPONENT, f"{a.name}.{loc.name}")
         for a, loc in zip(network.automata, state.locations, strict=True)

@@ -516,7 +516,6 @@ class NodeCore(object):
         data it is exactly (see :func:`messages.conforms`) and that the supervisor allows now,
         else blocked and reported. Never forwarded as an event whose data it is not."""
         found = self.events_of(message, topic.events, topic.name)
-        self.refused = None
         for event in found:
             if self.supervisor.perform(event.name, message):
                 self.forwarded_count += 1
@@ -556,6 +555,7 @@ class NodeCore(object):
             self.blocked(None, where, why, message)
             return
         why = self.supervisor.holds(found[0].name) or self.refused or "the supervisor does not allow it now"
+        self.refused = None  # read once: a later refusal (a message, a call, a goal) has its own reason
         self.blocked(found[0].name, where, why, message)
 
     def blocked(self, event: Optional[str], where: str, reason: str, data: Any = None) -> None:
