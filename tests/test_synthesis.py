@@ -503,7 +503,8 @@ def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool
     for model in models:
         default = synthesize_model(model)
         edges = "reverse" if reorder else "sorted"  # the edge orders too, each with half the cases
-        tuned = synthesize_model(model, options=SynthesisOptions(order, reorder, edges=edges))
+        explore = "chained" if "->" in order else "saturation"  # and both explorations
+        tuned = synthesize_model(model, options=SynthesisOptions(order, reorder, edges=edges, explore=explore))
         assert tuned.reachable_states == default.reachable_states
         assert [g.added is None for g in tuned.guards] == [g.added is None for g in default.guards]
         # the same events allowed in the same states (an added condition may be written
@@ -524,6 +525,8 @@ def test_an_unknown_order_is_refused() -> None:
         SynthesisOptions("random")
     with pytest.raises(ValueError, match="unknown order improvement 'dcsh'"):
         SynthesisOptions("model->dcsh")
+    with pytest.raises(ValueError, match="unknown exploration 'bfs'"):
+        SynthesisOptions(explore="bfs")
 
 
 def test_force_and_sliding_window_bring_what_interacts_together() -> None:

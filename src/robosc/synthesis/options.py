@@ -10,8 +10,7 @@ from robosc.record import record
 ORDERS = {
     "interaction": "automata and variables that share events, guards or requirements next to each other "
     "(breadth-first over how they interact; the default)",
-    "model": "the order of the model: the communications' plants, the components, the data plants, "
-    "then the variables",
+    "model": "the order of the model: the communications' plants, the components, the data plants, then the variables",
     "sorted": "by name",
     "reverse": "the interaction order reversed",
 }
@@ -44,6 +43,15 @@ EDGE_ORDERS = {
 }
 
 
+EXPLORATIONS = {
+    "saturation": "each event's fixed point first in the parts of the state below the highest bit it reads "
+    "(saturation): the events lowest in the variable order first, going back down whenever a set grows "
+    "(the default)",
+    "chained": "all events over the whole state set, each image added before the next event, round after "
+    "round until nothing changes",
+}
+
+
 FLEETS = {
     "counted": "where three or more components are copies of each other (the instances of `component bot[N]`, "
     "or components copied by hand) and the requirements treat them alike, count how many are in each state "
@@ -60,12 +68,14 @@ class SynthesisOptions:
     large models, usually more time. ``fleet``: how fleets of identical robots are synthesized,
     one of :data:`FLEETS`. ``edges``: the order in which the fixed points apply the events, one
     of :data:`EDGE_ORDERS` (each event's image is added before the next is applied, so the
-    order decides how far one round gets)."""
+    order decides how far one round gets). ``explore``: how the fixed points (reachability,
+    controllability, nonblocking) apply the events, one of :data:`EXPLORATIONS`."""
 
     order: str = "interaction"
     reorder: bool = False
     fleet: str = "counted"
     edges: str = "model"
+    explore: str = "saturation"
 
     def __post_init__(self) -> None:
         problem = order_problem(self.order)
@@ -73,6 +83,8 @@ class SynthesisOptions:
             raise ValueError(problem)
         if self.edges not in EDGE_ORDERS:
             raise ValueError(f"unknown edge order '{self.edges}' (one of {', '.join(EDGE_ORDERS)})")
+        if self.explore not in EXPLORATIONS:
+            raise ValueError(f"unknown exploration '{self.explore}' (one of {', '.join(EXPLORATIONS)})")
         if self.fleet not in FLEETS:
             raise ValueError(f"unknown fleet method '{self.fleet}' (one of {', '.join(FLEETS)})")
 

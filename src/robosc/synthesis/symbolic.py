@@ -15,8 +15,6 @@ import time
 from collections.abc import Iterable
 from typing import Any
 
-from dd import cudd
-
 from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
@@ -25,6 +23,7 @@ from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
+from robosc.synthesis.saturation import Step, fixed_point
 from robosc.synthesis.state import NetworkState, describe
 
 
@@ -70,29 +69,44 @@ class Fixpoint:
         return self.enc.state(locations, values)
 
 
-def closure(enc: Encoding, start: BDD, relations: Iterable[Relation]) -> BDD:
-    """``start`` and every state with a path into it over ``relations``.
+def closure(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "saturation") -> BDD:
+    """``start`` and every valid state with a path into it over ``relations``."""
+    return within(enc, start, relations, enc.pre, enc.valid(), explore)
 
-    Chaining: each relation's image is added before the next relation is applied,
-    which reaches the fixed point in far fewer rounds than breadth-first layers."""
+
+def reach(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "saturation") -> BDD:
+    """``start`` and every state reachable from it over ``relations``."""
+    return within(enc, start, relations, enc.post, None, explore)
+
+
+def within(
+    enc: Encoding,
+    start: BDD,
+    relations: Iterable[Relation],
+    step: Step,
+    inside: BDD | None,
+    explore: str,
+    each: bool = False,
+) -> BDD:
+    """The least set holding ``start`` and each ``step(relation, set)`` of it that lies ``inside``
+    (anywhere when None), found the way ``explore`` names (robosc.synthesis.options.EXPLORATIONS).
+    ``each``: chained, take each relation to its own fixed point before the next."""
+    if explore == "saturation":
+        return fixed_point(enc, start, relations, step, inside)
     relations = list(relations)
+
+    def grown(relation: Relation, states: BDD) -> BDD:
+        found = step(relation, states)
+        return states | (found if inside is None else found & inside)
+
     result = start
-    while True:
+    while True:  # chained: each relation's image is added before the next is applied
         before = result
         for relation in relations:
-            result |= enc.pre(relation, result) & enc.valid()
-        if result == before:
-            return result
-
-
-def reach(enc: Encoding, start: BDD, relations: Iterable[Relation]) -> BDD:
-    """``start`` and every state reachable from it over ``relations`` (chained, as :func:`closure`)."""
-    relations = list(relations)
-    result = start
-    while True:
-        before = result
-        for relation in relations:
-            result |= enc.post(relation, result)
+            result = grown(relation, result)
+            # each: a counted fleet's event moves one robot, so k robots in one state need it k times
+            while each and (more := grown(relation, result)) != result:
+                result = more
         if result == before:
             return result
 
@@ -125,6 +139,7 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
     initial = enc.state(
         {a: a.initial for a in network.automata}, {v: network.initial_values[v] for v in network.variables}
     )
+    explore = options.explore
     events = edge_order(network, options.edges)  # the order the chained loops apply the events in
     uncontrollable = [relation[e] for e in events if not e.controllable]
     restricted = [relation[e].restrict(required[e]) for e in events]
@@ -134,21 +149,10 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
 
     bad = requirement_bad
     while True:
-        bad = closure(enc, bad, uncontrollable)
-        good = marked & ~bad
-        while True:  # nonblocking: who reaches a marked state through good states (chained)
-            before = good
-            for r in restricted:
-                # each event to its own fixed point before the next: a counted fleet's event
-                # moves one robot, so k robots in one state need it k times (ring of 16 robots:
-                # 1,696 preimages in 3.7 s before, 768 in 1.7 s)
-                while True:
-                    grown = good | (enc.pre(r, good) & ~bad)
-                    if grown == good:
-                        break
-                    good = grown
-            if good == before:
-                break
+        bad = closure(enc, bad, uncontrollable, explore)
+        # nonblocking: who reaches a marked state through good states (chained, each event to
+        # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
+        good = within(enc, marked & ~bad, restricted, enc.pre, ~bad, explore, each=True)
         new_bad = enc.valid() & ~good
         if new_bad == bad:
             break
@@ -159,12 +163,16 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
     }
     reachable = enc.false
     if (initial & bad) == enc.false:
-        # in the network's order, each event's uncontrollable answers right after it (ring of 16
-        # robots: 9.7 s instead of 11.7 s); the allowed sets only where states are valid, which
-        # every reachable state is (a smaller BDD to apply at every image)
-        valid = enc.valid()
-        steps = [relation[e].restrict(cudd.restrict(allowed[e], valid)) if e.controllable else relation[e] for e in events]
-        reachable = reach(enc, initial, steps)  # forward reachability under the supervisor
+        # a controllable event where its requirements hold and it leads to no bad state: on the
+        # reachable states, valid and good, that is where the supervisor allows it, and it reads
+        # only what the requirements and the bad states read (the allowed sets also read every
+        # counter of a fleet through the valid states, which put every event at the top of the
+        # order for saturation)
+        steps = [
+            relation[e].restrict(required[e] & ~enc.pre(relation[e], bad)) if e.controllable else relation[e]
+            for e in events
+        ]
+        reachable = reach(enc, initial, steps, explore)  # forward reachability under the supervisor
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 
