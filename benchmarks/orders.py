@@ -34,6 +34,7 @@ from robosc.plant import build_network
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.ordering import hyperedges, initial_order, total_span
 family, n, fleet, spec = sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+explore = sys.argv[6] if len(sys.argv) > 6 else "saturation"
 order, _, edges = spec.partition("@")
 model = check_text(getattr(families, family)(n)).model
 network = build_network(model)
@@ -44,11 +45,30 @@ start = time.perf_counter()
 items = initial_order(network, order)
 ordered = time.perf_counter() - start
 span = total_span(list(range(len(items))), hyperedges(network, items))
-result = synthesize_model(model, options=SynthesisOptions(order=order, fleet=fleet, edges=edges or "model"))
+options = SynthesisOptions(order=order, fleet=fleet, edges=edges or "model", explore=explore)
+result = synthesize_model(model, options=options)
 done = time.perf_counter() - start
 print(json.dumps({"span": span, "order_s": ordered, "s": done, "states": result.reachable_states,
     "mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **result.details["effort"]}))
 """
+
+
+def run(name: str, order: str, timeout: float, explore: str = "saturation") -> dict | None:  # type: ignore[type-arg]
+    """Synthesis of MODELS[name] with ``order`` (``ORDER@EDGES``) in a process of its own: its
+    figures, or None after printing a row that says why there are none."""
+    family, n, fleet = MODELS[name]
+    try:
+        done = subprocess.run(
+            [sys.executable, "-c", RUN, str(HERE), family, str(n), fleet, order, explore],
+            capture_output=True, text=True, timeout=timeout, check=False,
+        )
+    except subprocess.TimeoutExpired:
+        print(f"| {name} | `{order}` {explore} | | | over {timeout:g} s | | | |", flush=True)
+        return None
+    if done.returncode != 0:
+        print(f"| {name} | `{order}` {explore} | | | failed: {done.stderr.strip().splitlines()[-1][:60]} | | | |", flush=True)
+        return None
+    return dict(json.loads(done.stdout.strip().splitlines()[-1]))
 
 
 def main() -> None:
@@ -61,21 +81,11 @@ def main() -> None:
     print("| model | order | total span | order s | synthesis s | peak live nodes | peak MB | controlled states |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     for name in args.models.split(","):
-        family, n, fleet = MODELS[name]
         states = set()
         for order in args.orders.split(","):
-            try:
-                done = subprocess.run(
-                    [sys.executable, "-c", RUN, str(HERE), family, str(n), fleet, order],
-                    capture_output=True, text=True, timeout=args.timeout, check=False,
-                )
-            except subprocess.TimeoutExpired:
-                print(f"| {name} | `{order}` | | | over {args.timeout:g} s | | | |", flush=True)
+            f = run(name, order, args.timeout)
+            if f is None:
                 continue
-            if done.returncode != 0:
-                print(f"| {name} | `{order}` | | | failed: {done.stderr.strip().splitlines()[-1][:60]} | | | |", flush=True)
-                continue
-            f = json.loads(done.stdout.strip().splitlines()[-1])
             states.add(f["states"])
             print(
                 f"| {name} | `{order}` | {f['span']:,} | {f['order_s']:.2f} | {f['s']:.2f} | {f['peak_live_nodes']:,} "

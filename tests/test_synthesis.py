@@ -503,7 +503,7 @@ def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool
     for model in models:
         default = synthesize_model(model)
         edges = "reverse" if reorder else "sorted"  # the edge orders too, each with half the cases
-        explore = "chained" if "->" in order else "saturation"  # and both explorations
+        explore = "chained" if "->" in order else "saturation"  # and both explorations (the default: auto)
         tuned = synthesize_model(model, options=SynthesisOptions(order, reorder, edges=edges, explore=explore))
         assert tuned.reachable_states == default.reachable_states
         assert [g.added is None for g in tuned.guards] == [g.added is None for g in default.guards]

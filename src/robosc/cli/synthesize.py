@@ -13,7 +13,15 @@ from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
-from robosc.synthesis.options import EDGE_ORDERS, FLEETS, IMPROVEMENTS, ORDERS, SynthesisOptions, order_problem
+from robosc.synthesis.options import (
+    EDGE_ORDERS,
+    EXPLORATIONS,
+    FLEETS,
+    IMPROVEMENTS,
+    ORDERS,
+    SynthesisOptions,
+    order_problem,
+)
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
 from robosc.wrapping import fill
@@ -197,6 +205,15 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
     help="The order in which the fixed points apply the events (docs/synthesis-options.md): speed only.",
 )
 @click.option(
+    "--explore",
+    type=click.Choice(list(EXPLORATIONS)),
+    default="auto",
+    show_default=True,
+    help="How the fixed points apply the events (docs/synthesis-options.md): saturation, from the bottom of the "
+    "variable order up, or chained over the whole state set; auto: saturation for a counted fleet, chained "
+    "otherwise. Speed and memory only.",
+)
+@click.option(
     "--fleet",
     type=click.Choice(list(FLEETS)),
     default="counted",
@@ -218,13 +235,14 @@ def synthesize(
     order: str,
     reorder: bool,
     edges: str,
+    explore: str,
     fleet: str,
     stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    options = SynthesisOptions(order, reorder, fleet, edges)
+    options = SynthesisOptions(order, reorder, fleet, edges, explore)
     result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
     cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
     if show_network:

@@ -69,12 +69,12 @@ class Fixpoint:
         return self.enc.state(locations, values)
 
 
-def closure(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "saturation") -> BDD:
+def closure(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "auto") -> BDD:
     """``start`` and every valid state with a path into it over ``relations``."""
     return within(enc, start, relations, enc.pre, enc.valid(), explore)
 
 
-def reach(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "saturation") -> BDD:
+def reach(enc: Encoding, start: BDD, relations: Iterable[Relation], explore: str = "auto") -> BDD:
     """``start`` and every state reachable from it over ``relations``."""
     return within(enc, start, relations, enc.post, None, explore)
 
@@ -91,7 +91,7 @@ def within(
     """The least set holding ``start`` and each ``step(relation, set)`` of it that lies ``inside``
     (anywhere when None), found the way ``explore`` names (robosc.synthesis.options.EXPLORATIONS).
     ``each``: chained, take each relation to its own fixed point before the next."""
-    if explore == "saturation":
+    if explore == "saturation" or (explore == "auto" and enc.network.totals):  # a counted fleet
         return fixed_point(enc, start, relations, step, inside)
     relations = list(relations)
 
