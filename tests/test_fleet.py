@@ -326,6 +326,31 @@ PARTLY = """robot Partly {
 """
 
 
+TRAP = """robot Trap {
+    component bot[3] {
+        incoming message go with type: none
+        incoming message back with type: none
+        incoming message home with type: none
+        incoming message rescue with type: none
+        outgoing message fell with type: none
+        behaviour {
+            initial marked state a { on request to go goto b }
+            state b { on request to back goto c }
+            state c {
+                on request to home goto a
+                on response from fell goto pit
+            }
+            state pit { on request to rescue goto a }
+        }
+    }
+    for r in bot {
+        // the way home from b passes c, where a robot can fall into a pit it may not leave
+        requirement r.rescue needs r.a
+    }
+}
+"""
+
+
 def replay(result: Any, restriction: Any) -> None:
     """The explanation's run is a run of the fleet under the (monolithic) supervisor ``result``:
     each step allowed there and reaching the state the explanation names; at its end the
@@ -348,7 +373,7 @@ def replay(result: Any, restriction: Any) -> None:
 
 
 @pytest.mark.parametrize(
-    "text", [DEADLOCK, NEVER, PARTLY, "warehouse"], ids=["deadlock", "never", "partly", "warehouse"]
+    "text", [DEADLOCK, NEVER, PARTLY, TRAP, "warehouse"], ids=["deadlock", "never", "partly", "trap", "warehouse"]
 )
 def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
     """The explanation of each added condition is found on the counted network and followed with
@@ -373,6 +398,11 @@ def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
         # what goes wrong is told as the monolithic method tells it (maybe of other robots)
         assert mine.consequence.reason.split(" from state [")[0] == theirs.consequence.reason.split(" from state [")[0]
         assert [f.span for f in mine.consequence.fixes] == [f.span for f in theirs.consequence.fixes]
+        # and where the shortest way on is cut, with the robots' events and states
+        cut = "The shortest way on to a marked state is cut: "
+        assert (cut in mine.consequence.reason) == (cut in theirs.consequence.reason)
+        if cut in theirs.consequence.reason:
+            assert mine.consequence.reason.split(cut)[1] == theirs.consequence.reason.split(cut)[1]
         if "stuck outside" in theirs.consequence.reason:
             assert "stuck outside a marked state: bot" in mine.consequence.reason
     assert {(d.code, d.span) for d in synthesis_warnings(fleet)} == {(d.code, d.span) for d in synthesis_warnings(mono)}

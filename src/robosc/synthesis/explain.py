@@ -182,7 +182,7 @@ def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[
     return found
 
 
-def _exits(fp: Any, state: NetworkState) -> list[str]:
+def ways_out(fp: Any, state: NetworkState) -> list[str]:
     """For each component stuck outside a marked state: how it could leave, and what stops it."""
     found = []
     for automaton, location, exits in _stuck(fp, state):
@@ -274,35 +274,53 @@ def _required_moves(fp: Any) -> tuple[list[tuple[Event, Relation]], BDD]:
     return found
 
 
-def _trap(fp: Any, state: NetworkState) -> str | None:
-    """Where the shortest way from ``state`` to a marked state (events the requirements
-    allow) is cut: the first state on it where an uncontrollable event leads somewhere no
-    marked state can be reached from at all, or where an uncontrollable event breaks a
-    requirement. None when the cut is further away than that."""
+def cut_way(fp: Any, state: NetworkState) -> tuple[list[tuple[Event, NetworkState]], Event, NetworkState, bool] | None:
+    """Where the shortest way from ``state`` to a marked state (events the requirements allow)
+    is cut: the first state on it where an uncontrollable event leads somewhere no marked state
+    can be reached from at all, or where an uncontrollable event breaks a requirement. The
+    events up to that state (each with the state it reaches), the uncontrollable event, the
+    state it leads to, and whether that state is one no marked state can be reached from (else
+    an uncontrollable event breaks a requirement there). None when the cut is further away."""
     enc = fp.enc
     restricted, dead = _required_moves(fp)
     layers = layers_from(enc, fp.state(state), (r for _, r in restricted), until=fp.marked)
     if (layers[-1] & fp.marked) == enc.false:
         return None
     path = walk_back(fp, layers, pick(fp, layers[-1] & fp.marked), restricted)
-    network = enc.network
     for index, at in enumerate([state, *(reached for _, reached in path)]):
-        route = f"after {', '.join(event.name for event, _ in path[:index])} " if index else ""
         where = fp.state(at)
-        for u in network.uncontrollable:
+        for u in enc.network.uncontrollable:
             into = enc.post(fp.relation[u], where)
-            cut = f"The shortest way on to a marked state is cut: {route}the uncontrollable event {u.name} can "
             if (into & dead) != enc.false:
-                trapped = pick(fp, into & dead)
-                fp.memo[("trapped", state)] = trapped  # its fixes are the explanation's too
-                stays = "; ".join(_exits(fp, trapped))
-                return (
-                    f"{cut}happen and lead to [{fp.describe(trapped)}], from where no marked state can be "
-                    f"reached at all ({stays or 'no component can leave'})"
-                )
+                return path[:index], u, pick(fp, into & dead), True
             if (fp.requirement_bad & into) != enc.false:
-                return f"{cut}lead to a state where an uncontrollable event breaks a requirement"
+                return path[:index], u, pick(fp, fp.requirement_bad & into), False
     return None
+
+
+def cut_words(route: Sequence[Event], event: Event, reached: str, dead: bool, exits: Sequence[str]) -> str:
+    """:func:`cut_way`'s finding in words (``reached`` described, ``exits`` of it when dead)."""
+    after = f"after {', '.join(e.name for e in route)} " if route else ""
+    cut = f"The shortest way on to a marked state is cut: {after}the uncontrollable event {event.name} can "
+    if not dead:
+        return f"{cut}lead to a state where an uncontrollable event breaks a requirement"
+    stays = "; ".join(exits)
+    return (
+        f"{cut}happen and lead to [{reached}], from where no marked state can be reached at all "
+        f"({stays or 'no component can leave'})"
+    )
+
+
+def _trap(fp: Any, state: NetworkState) -> str | None:
+    """:func:`cut_way` in words; the state it leads to is kept for its fixes."""
+    found = cut_way(fp, state)
+    if found is None:
+        return None
+    route, event, reached, dead = found
+    if dead:
+        fp.memo[("trapped", state)] = reached  # its fixes are the explanation's too
+    exits = ways_out(fp, reached) if dead else []
+    return cut_words([e for e, _ in route], event, fp.describe(reached), dead, exits)
 
 
 def _reason(fp: Any, state: NetworkState, failed: bool = False) -> str:
@@ -340,7 +358,7 @@ def blocking(fp: Any, state: NetworkState, described: str, trap: str | None = No
     components = [name for plant, name in unmarked if not plant]
     names = components or [name for _, name in unmarked]
     stuck = f" (stuck outside a marked state: {', '.join(names)})" if names else ""
-    exits = _exits(fp, state)
+    exits = ways_out(fp, state)
     because = f": {'; '.join(exits)}" if exits else ""
     if trap:
         because += f". {trap}"

@@ -18,9 +18,9 @@ from typing import Any
 from robosc.language.render import literal
 from robosc.plant.network import Event, Network, Requirement
 from robosc.synthesis.evaluate import Undefined, evaluate
-from robosc.synthesis.explain import Probe, blocking, breaking, fixes, likeliest
+from robosc.synthesis.explain import Probe, blocking, breaking, cut_way, cut_words, fixes, likeliest, ways_out
 from robosc.synthesis.explicit import successors
-from robosc.synthesis.result import Explanation, Restriction, Step
+from robosc.synthesis.result import Explanation, Fix, Restriction, Step
 from robosc.synthesis.state import NetworkState, describe, describe_parts
 from robosc.synthesis.symmetry import Agent, CountedSupervisor, Group, start_of
 from robosc.synthesis.why import Reasons, reasons
@@ -179,8 +179,23 @@ def counted_why(result: Any, event: Event) -> Restriction | None:
     last = consequence[-1][1] if consequence else after  # where it breaks a requirement, or blocks
     asked = explicit_probe(network)
     described = describe(network, last)
-    reason = breaking(asked, last, described) or blocking(asked, last, described)
-    found_fixes = likeliest(fixes(asked, last)) if reason.startswith("the system would block") else ()
+    reason = breaking(asked, last, described)
+    found_fixes: tuple[Fix, ...] = ()
+    if reason is None:
+        # where the shortest way on is cut, found on the counted network and followed with the robots
+        cut = cut_way(fp, best.consequence[-1][1] if best.consequence else best.after)
+        trap = None
+        proposed = fixes(asked, last)
+        if cut is not None:
+            route, counted_event, counted_reached, dead = cut
+            events = [robots.step(e, reached)[0] for e, reached in route]
+            event_there, reached = robots.step(counted_event, counted_reached)
+            exits = ways_out(asked, reached) if dead else []
+            trap = cut_words(events, event_there, describe(network, reached), dead, exits)
+            if dead:
+                proposed += fixes(asked, reached)
+        reason = blocking(asked, last, described, trap)
+        found_fixes = likeliest(proposed)
     explanation = Explanation(reason, describe(network, after), steps(consequence), found_fixes)
     owner = supervisor.agent_of_event.get(event)
     alike = ""
