@@ -23,7 +23,10 @@ MODELS = {
     "warehouse 5 (copies; monolithic)": ("warehouse", 5, "monolithic"),
     "ring 16 (instances; counted)": ("ring_instances", 16, "counted"),
 }
-ORDERS = "interaction,model,interaction->force,interaction->force->slidwin,model->force->slidwin,sorted->force->slidwin"
+ORDERS = (
+    "interaction,model,interaction->force,interaction->force->slidwin,model->force->slidwin,sorted->force->slidwin,"
+    "model->dcsh,model->dcsh->force,interaction->dcsh"
+)
 
 RUN = r"""
 import json, resource, sys, time

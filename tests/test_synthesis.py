@@ -492,7 +492,17 @@ def test_conditions_kept_apart_from_the_relations_give_the_same_supervisor(monke
 
 
 @pytest.mark.parametrize(
-    "order", ["interaction", "model", "sorted", "reverse", "model->force", "sorted->force->slidwin", "interaction->reverse"]
+    "order",
+    [
+        "interaction",
+        "model",
+        "sorted",
+        "reverse",
+        "model->force",
+        "sorted->force->slidwin",
+        "interaction->reverse",
+        "model->dcsh->force",
+    ],
 )
 @pytest.mark.parametrize("reorder", [False, True])
 def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool) -> None:
@@ -523,8 +533,8 @@ def test_an_unknown_order_is_refused() -> None:
 
     with pytest.raises(ValueError, match="unknown variable order 'random'"):
         SynthesisOptions("random")
-    with pytest.raises(ValueError, match="unknown order improvement 'dcsh'"):
-        SynthesisOptions("model->dcsh")
+    with pytest.raises(ValueError, match="unknown order improvement 'sifting'"):
+        SynthesisOptions("model->sifting")
     with pytest.raises(ValueError, match="unknown exploration 'bfs'"):
         SynthesisOptions(explore="bfs")
 
@@ -548,3 +558,51 @@ def test_force_and_sliding_window_bring_what_interacts_together() -> None:
     shuffled = start[1::2] + start[0::2]
     assert total_span(sliding_window(shuffled, edges), edges) < total_span(shuffled, edges)
     assert initial_order(network, "model->force->slidwin") == [model_order[i] for i in windowed]
+
+
+def test_dcsh_numbers_what_interacts_close_together() -> None:
+    """Cuthill-McKee and Sloan walk a scrambled chain from one end to the other (the least total
+    span there is), number parts that share nothing one after the other, and DCSH, the better
+    of them, repairs the transfer line's model order as FORCE does."""
+    import families
+    from robosc.synthesis.ordering import cuthill_mckee, dcsh, graph_of, hyperedges, initial_order, sloan, total_span
+
+    chain = [[i, i + 1] for i in range(9)]
+    scrambled = [3, 7, 0, 9, 5, 1, 8, 2, 6, 4]
+    for method in (cuthill_mckee, sloan):
+        found = method(graph_of(scrambled, chain), scrambled)
+        assert sorted(found) == list(range(10)) and total_span(found, chain) == 9
+    assert total_span(dcsh(scrambled, chain), chain) == 9
+    two = [[i, i + 1] for i in range(4)] + [[i, i + 1] for i in range(5, 9)]  # 0..4 and 5..9
+    found = dcsh(scrambled, two)
+    assert sorted(found) == list(range(10)) and total_span(found, two) == 8
+
+    network = build_network(load(families.transfer_line(12)))
+    model_order = initial_order(network, "model")
+    edges = hyperedges(network, model_order)
+    start = list(range(len(model_order)))
+    found = dcsh(start, edges)
+    assert sorted(found) == start and total_span(found, edges) < total_span(start, edges) / 2
+    assert initial_order(network, "model->dcsh") == [model_order[i] for i in found]
+
+
+def test_dcsh_keeps_the_best_of_its_candidates_and_never_worsens_an_order() -> None:
+    import random
+
+    from robosc.synthesis.ordering import cuthill_mckee, dcsh, force, graph_of, sliding_window, sloan, total_span
+
+    rng = random.Random(5)
+    for _ in range(200):
+        n = rng.randint(3, 12)
+        path = rng.sample(range(n), n)  # one part: a random path through all, and random groups
+        edges = [sorted(path[i : i + 2]) for i in range(n - 1)]
+        edges += [sorted(rng.sample(range(n), rng.randint(2, min(4, n)))) for _ in range(rng.randint(0, 6))]
+        order = rng.sample(range(n), n)
+        if rng.random() < 0.5:  # an order already improved, often better than either numbering
+            order = sliding_window(force(order, edges), edges)
+        found = dcsh(order, edges)
+        assert sorted(found) == list(range(n))
+        assert total_span(found, edges) <= total_span(order, edges)
+        for method in (cuthill_mckee, sloan):
+            candidate = method(graph_of(order, edges), order)
+            assert total_span(found, edges) <= min(total_span(candidate, edges), total_span(candidate[::-1], edges))

@@ -16,6 +16,8 @@ ORDERS = {
 }
 
 IMPROVEMENTS = {
+    "dcsh": "DCSH: Cuthill-McKee and Sloan over the graph of what the events tie together, each also "
+    "reversed, keeping the one with the smallest total span",
     "force": "FORCE: each group of things an event ties together pulls its members to its centre, "
     "repeatedly, keeping the order where they are closest (the smallest total span)",
     "slidwin": "sliding window: every 4 neighbours in the order tried in each of their 24 orders, "
