@@ -37,7 +37,7 @@ from robosc.plant import build_network
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.ordering import hyperedges, initial_order, total_span
 family, n, fleet, spec = sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
-explore = sys.argv[6] if len(sys.argv) > 6 else "saturation"
+explore = sys.argv[6] if len(sys.argv) > 6 else "auto"
 order, _, edges = spec.partition("@")
 model = check_text(getattr(families, family)(n)).model
 network = build_network(model)
@@ -56,7 +56,7 @@ print(json.dumps({"span": span, "order_s": ordered, "s": done, "states": result.
 """
 
 
-def run(name: str, order: str, timeout: float, explore: str = "saturation") -> dict | None:  # type: ignore[type-arg]
+def run(name: str, order: str, timeout: float, explore: str = "auto") -> dict | None:  # type: ignore[type-arg]
     """Synthesis of MODELS[name] with ``order`` (``ORDER@EDGES``) in a process of its own: its
     figures, or None after printing a row that says why there are none."""
     family, n, fleet = MODELS[name]
