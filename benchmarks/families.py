@@ -103,8 +103,8 @@ def _next_zone_free(i: int, n: int, zones: int, also: dict[int, str] | None = No
         nxt = (k + 1) % zones
         held = " or ".join(f"R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt}" for j in range(n) if j != i)
         free = f"!({held})" if held else "true"
-        if also and nxt in also:
-            free = f"{free} and {also[nxt]}"
+        if also and nxt in also:  # in parentheses: `=>` binds tighter than `and`
+            free = f"({free} and {also[nxt]})"
         parts.append(f"(R{i}.at{k} => {free})")
     return " and ".join(parts)
 
@@ -219,8 +219,8 @@ def _zone_free(zones: int, also: dict[int, str] | None = None) -> str:
     for k in range(zones):
         nxt = (k + 1) % zones
         free = f"!any(q in bot: q.at{nxt} or q.moving{k} or q.moving{nxt})"
-        if also and nxt in also:
-            free = f"{free} and {also[nxt]}"
+        if also and nxt in also:  # in parentheses: `=>` binds tighter than `and`
+            free = f"({free} and {also[nxt]})"
         parts.append(f"(r.at{k} => {free})")
     return " and ".join(parts)
 

@@ -100,8 +100,19 @@ def explicit(edges: list[set[tuple[int, int]]], start: set[int], inside: set[int
 
 
 @settings(max_examples=150, deadline=None)
-@given(st.integers(0, 2**32), st.booleans(), st.booleans())
-def test_saturation_finds_the_least_fixed_point(seed: int, forward: bool, constrained: bool) -> None:
+@given(st.integers(0, 2**32), st.booleans(), st.booleans(), st.sampled_from([1, 3, 1 << 20]))
+def test_saturation_finds_the_least_fixed_point(seed: int, forward: bool, constrained: bool, cache: int) -> None:
+    """``cache``: how many entries its caches keep before they are emptied (all but none, some, all)."""
+    from robosc.synthesis import saturation
+
+    saturation.CACHE_LIMIT, kept = cache, saturation.CACHE_LIMIT
+    try:
+        check_least_fixed_point(seed, forward, constrained)
+    finally:
+        saturation.CACHE_LIMIT = kept
+
+
+def check_least_fixed_point(seed: int, forward: bool, constrained: bool) -> None:
     system = System(seed)
     rng = random.Random(seed + 1)
     start = {s for s in STATES if rng.random() < 0.08} or {0}

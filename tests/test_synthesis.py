@@ -606,3 +606,35 @@ def test_dcsh_keeps_the_best_of_its_candidates_and_never_worsens_an_order() -> N
         for method in (cuthill_mckee, sloan):
             candidate = method(graph_of(order, edges), order)
             assert total_span(found, edges) <= min(total_span(candidate, edges), total_span(candidate[::-1], edges))
+
+
+NONDETERMINISTIC = """robot Nondeterministic {
+    component Arm {
+        incoming message go with type: none
+        incoming message reset with type: none
+        incoming message fix with type: none
+        behaviour {
+            initial marked state idle {
+                on request to go goto fine
+                on request to go goto broken
+            }
+            marked state fine { on request to reset goto idle }
+            state broken { on request to fix goto idle }
+        }
+    }
+    requirement fix needs Arm.idle
+}
+"""
+
+
+@pytest.mark.parametrize("explore", ["saturation", "chained"])
+def test_an_event_that_may_lead_to_a_good_or_a_bad_state_is_disabled_and_its_good_target_unreached(explore: str):
+    """go may end in fine or in broken (which blocks): the supervisor disables it, so fine is
+    never reached, though it is a good state one step from the start."""
+    from robosc.synthesis.options import SynthesisOptions
+
+    model = load(NONDETERMINISTIC)
+    result = synthesize_model(model, options=SynthesisOptions(explore=explore))
+    explicit = synthesize_explicit(build_network(model))
+    assert result.reachable_states == explicit.reachable_states == 1
+    assert not result.allows("go", result.state({"Arm": "idle"}))

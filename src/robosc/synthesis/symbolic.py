@@ -163,16 +163,25 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
     }
     reachable = enc.false
     if (initial & bad) == enc.false:
-        # a controllable event where its requirements hold and it leads to no bad state: on the
-        # reachable states, valid and good, that is where the supervisor allows it, and it reads
-        # only what the requirements and the bad states read (the allowed sets also read every
-        # counter of a fleet through the valid states, which put every event at the top of the
-        # order for saturation)
-        steps = [
-            relation[e].restrict(required[e] & ~enc.pre(relation[e], bad)) if e.controllable else relation[e]
-            for e in events
-        ]
-        reachable = reach(enc, initial, steps, explore)  # forward reachability under the supervisor
+        # forward reachability under the supervisor, kept to the good states: from a good state a
+        # controllable event is allowed where its requirements hold and it leads to no bad state, and
+        # an uncontrollable one never leads to one. So a controllable event needs only its
+        # requirements (what its move reads: saturation keeps it low in the order), except where it
+        # can lead both to a bad and to a good state (nondeterministic), where the supervisor
+        # disables it: there it also needs to lead to no bad state. (The allowed sets read every
+        # counter of a fleet through the valid states.)
+        good = ~bad
+        steps = []
+        for e in events:
+            step = relation[e]
+            if e.controllable:
+                guard = required[e]
+                into_bad = enc.pre(relation[e], bad)
+                if (into_bad & enc.pre(relation[e], good & enc.valid()) & good & guard) != enc.false:
+                    guard &= ~into_bad
+                step = step.restrict(guard)
+            steps.append(step)
+        reachable = within(enc, initial, steps, enc.post, good, explore)
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 
