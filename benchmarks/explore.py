@@ -1,4 +1,4 @@
-"""The two explorations side by side (docs/synthesis-options.md): saturation (the default) and
+"""The explorations side by side (docs/synthesis-options.md): auto (the default), saturation and
 chained, on the order benchmark's models and larger fleets. For each: synthesis time, peak live
 BDD nodes, images and preimages, peak memory, controlled states (which must agree). Each run is a
 process of its own with a time limit.
@@ -23,7 +23,7 @@ MODELS.update(
         "enum sensors 32": ("enum_sensors", 32, "monolithic"),
     }
 )
-EXPLORATIONS = ("saturation", "chained")
+EXPLORATIONS = ("auto", "saturation", "chained")
 
 
 def main() -> None:

@@ -131,3 +131,23 @@ def test_a_relations_top_is_its_highest_bit_read_guard_included() -> None:
     assert top(enc, relation) == enc.bdd.level_of_var("x3")
     guarded = Relation(relation.bdd, relation.bits, relation.primed, enc.bdd.var("x1"))
     assert top(enc, guarded) == enc.bdd.level_of_var("x1")
+
+
+def test_saturation_is_chosen_where_few_relations_reach_the_top_of_the_order() -> None:
+    """The automatic choice: saturation unless more than a third of the relations read the first
+    tenth of the order (here the first of 12 levels, x0)."""
+    from robosc.synthesis.saturation import local
+
+    enc = System(7).enc
+
+    def moving(k: int, reading: int | None = None) -> Relation:
+        bdd = enc.bdd.var(f"x{k}'")
+        if reading is not None:
+            bdd &= enc.bdd.var(f"x{reading}")
+        return Relation(bdd, [f"x{k}"], [f"x{k}'"])
+
+    spread = [moving(k) for k in range(1, 6)]
+    assert local(enc, spread)
+    assert local(enc, [*spread[:4], moving(0)])  # one in five from the top
+    assert local(enc, [*spread[:2], moving(2, reading=0)])  # one in three
+    assert not local(enc, [*spread[:3], moving(2, reading=0), moving(4, reading=0)])  # two in five

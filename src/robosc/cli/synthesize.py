@@ -210,8 +210,8 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
     default="auto",
     show_default=True,
     help="How the fixed points apply the events (docs/synthesis-options.md): saturation, from the bottom of the "
-    "variable order up, or chained over the whole state set; auto: saturation for a counted fleet, chained "
-    "otherwise. Speed and memory only.",
+    "variable order up, or chained over the whole state set; auto: saturation where most events read few "
+    "bits low in the order, chained otherwise. Speed and memory only.",
 )
 @click.option(
     "--fleet",

@@ -23,7 +23,7 @@ from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.saturation import Step, fixed_point
+from robosc.synthesis.saturation import Step, fixed_point, local
 from robosc.synthesis.state import NetworkState, describe
 
 
@@ -91,9 +91,9 @@ def within(
     """The least set holding ``start`` and each ``step(relation, set)`` of it that lies ``inside``
     (anywhere when None), found the way ``explore`` names (robosc.synthesis.options.EXPLORATIONS).
     ``each``: chained, take each relation to its own fixed point before the next."""
-    if explore == "saturation" or (explore == "auto" and enc.network.totals):  # a counted fleet
-        return fixed_point(enc, start, relations, step, inside)
     relations = list(relations)
+    if explore == "saturation" or (explore == "auto" and local(enc, relations)):
+        return fixed_point(enc, start, relations, step, inside)
 
     def grown(relation: Relation, states: BDD) -> BDD:
         found = step(relation, states)
