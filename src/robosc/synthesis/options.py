@@ -47,7 +47,7 @@ EDGE_ORDERS = {
 
 EXPLORATIONS = {
     "auto": "for each fixed point, saturation unless more than a third of the events read the first tenth of the "
-    "variable order, chained then (the default: the better of the two on each benchmark family)",
+    "variable order, chained then (the default: as fast as the better of the two, or nearly, on each benchmark family)",
     "saturation": "each event's fixed point first in the parts of the state below the highest bit it reads "
     "(saturation): the events lowest in the variable order first, going back down whenever a set grows "
     "(far faster where events read few bits each, as a counted fleet's robot moves do)",
