@@ -158,9 +158,8 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
             break
         bad = new_bad
 
-    allowed = {
-        e: enabled[e] & required[e] & ~bad & ~enc.pre(relation[e], bad) for e in network.events if e.controllable
-    }
+    into_bad = {e: enc.pre(relation[e], bad) for e in network.events if e.controllable}
+    allowed = {e: enabled[e] & required[e] & ~bad & ~into_bad[e] for e in into_bad}
     reachable = enc.false
     if (initial & bad) == enc.false:
         # forward reachability under the supervisor, kept to the good states: from a good state a
@@ -170,18 +169,17 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
         # can lead both to a bad and to a good state (nondeterministic), where the supervisor
         # disables it: there it also needs to lead to no bad state. (The allowed sets read every
         # counter of a fleet through the valid states.)
-        good = ~bad
+        kept = ~bad
         steps = []
         for e in events:
             step = relation[e]
             if e.controllable:
                 guard = required[e]
-                into_bad = enc.pre(relation[e], bad)
-                if (into_bad & enc.pre(relation[e], good & enc.valid()) & good & guard) != enc.false:
-                    guard &= ~into_bad
+                if (into_bad[e] & enc.pre(relation[e], kept & enc.valid()) & kept & guard) != enc.false:
+                    guard &= ~into_bad[e]
                 step = step.restrict(guard)
             steps.append(step)
-        reachable = within(enc, initial, steps, enc.post, good, explore)
+        reachable = within(enc, initial, steps, enc.post, kept, explore)
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 
