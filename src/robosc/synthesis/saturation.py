@@ -30,6 +30,17 @@ Step = Callable[[Relation, BDD], BDD]  # Encoding.post (images) or Encoding.pre 
 CACHE_LIMIT = 1 << 20
 
 
+Key = tuple[int, int, int]  # a set's and a constraint's node ids, an index into the tops
+Entry = tuple[BDD, BDD, BDD]  # the set and the constraint kept alive (their ids stay theirs), the result
+
+
+def keep(cache: dict[Key, Entry], key: Key, entry: Entry) -> None:
+    """``cache[key] = entry``, the cache emptied first when it holds :data:`CACHE_LIMIT` entries."""
+    if len(cache) >= CACHE_LIMIT:
+        cache.clear()
+    cache[key] = entry
+
+
 def top(enc: Encoding, relation: Relation) -> int:
     """The level of the highest bit ``relation`` reads or changes (0 for one that reads none)."""
     names = set(relation.bdd.support) | set(relation.bits) | set(relation.primed)
@@ -63,9 +74,8 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
     if not tops:
         return start
     names = {bdd.level_of_var(name): name for name in bdd.vars}
-    # (set, within, i) -> the set and within kept alive (their ids stay theirs), the result
-    done: dict[tuple[int, int, int], tuple[BDD, BDD, BDD]] = {}
-    walked: dict[tuple[int, int, int], tuple[BDD, BDD, BDD]] = {}  # the same for below()
+    done: dict[Key, Entry] = {}  # saturated()
+    walked: dict[Key, Entry] = {}  # below()
 
     def node(level: int, low: BDD, high: BDD) -> BDD:
         if low == high:
@@ -98,9 +108,7 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
                 return got[2]
             (u0, u1), (w0, w1) = halves(u, level), halves(w, level)
             result = node(level, walk(u0, w0), walk(u1, w1))
-            if len(walked) >= CACHE_LIMIT:
-                walked.clear()
-            walked[key] = (u, w, result)
+            keep(walked, key, (u, w, result))
             return result
 
         return walk(p, c)
@@ -123,9 +131,7 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
                     q = below(grown, c, i + 1)
             if q == before:
                 break
-        if len(done) >= CACHE_LIMIT:
-            done.clear()
-        done[key] = (p, c, q)
+        keep(done, key, (p, c, q))
         return q
 
     # one Python frame per level and a few per top at most; levels must not move meanwhile
