@@ -5,7 +5,7 @@ event would lead to, see :mod:`robosc.synthesis.why`)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any
 
 from robosc.language import model as m
@@ -28,27 +28,36 @@ def pick(fp: Any, states: BDD) -> NetworkState:
     )
 
 
+def grow_layers(enc: Any, start: BDD, relations: Iterable[Relation], within: BDD | None = None) -> Iterator[BDD]:
+    """Breadth-first layers from ``start`` over ``relations``, one at a time (layer k: the states
+    first reached after k events; ``start`` first), staying ``within`` those states, until nothing
+    new is reached. Lazy: a caller takes only as many as it needs."""
+    relations = list(relations)
+    layer = seen = start
+    yield start
+    while True:
+        image = enc.false
+        for relation in relations:
+            image |= enc.post(relation, layer)
+        layer = image & ~seen
+        if within is not None:
+            layer &= within
+        if layer == enc.false:
+            return
+        yield layer
+        seen |= layer
+
+
 def layers_from(
     enc: Any, start: BDD, relations: Iterable[Relation], within: BDD | None = None, until: BDD | None = None
 ) -> list[BDD]:
-    """Breadth-first layers from ``start`` over ``relations`` (layer k: the states first
-    reached after k events), staying ``within`` those states, up to the first layer that
-    meets ``until`` (or until nothing new is reached)."""
-    relations = list(relations)
-    layers = [start]
-    seen = start
-    while until is None or (layers[-1] & until) == enc.false:
-        image = enc.false
-        for relation in relations:
-            image |= enc.post(relation, layers[-1])
-        frontier = image & ~seen
-        if within is not None:
-            frontier &= within
-        if frontier == enc.false:
+    """The :func:`grow_layers` up to the first that meets ``until`` (or until nothing new is reached)."""
+    found = []
+    for layer in grow_layers(enc, start, relations, within):
+        found.append(layer)
+        if until is not None and (layer & until) != enc.false:
             break
-        layers.append(frontier)
-        seen |= frontier
-    return layers
+    return found
 
 
 def walk_back(

@@ -11,7 +11,7 @@ from typing import Any
 from robosc.plant.network import Event
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.explain import explain_path, pick, walk_back
+from robosc.synthesis.explain import explain_path, grow_layers, pick, walk_back
 from robosc.synthesis.result import Explanation, Restriction, Step
 from robosc.synthesis.state import NetworkState
 
@@ -48,21 +48,15 @@ def _layers(fp: Any, target: BDD) -> tuple[list[tuple[Event, Relation]], list[BD
     fleet has many layers, and a run to a restriction is usually short."""
     enc = fp.enc
     if "controlled layers" not in fp.memo:
-        fp.memo["controlled layers"] = (_steps(fp), [fp.initial], fp.initial, False)
-    steps, layers, seen, complete = fp.memo["controlled layers"]
-    reached = any((layer & target) != enc.false for layer in layers)
-    while not (reached or complete):
-        image = enc.false
-        for _, relation in steps:
-            image |= enc.post(relation, layers[-1])
-        frontier = image & ~seen
-        complete = frontier == enc.false
-        if not complete:
-            layers.append(frontier)
-            seen |= frontier
-            reached = (frontier & target) != enc.false
-    fp.memo["controlled layers"] = (steps, layers, seen, complete)
-    return steps, layers
+        steps = _steps(fp)
+        fp.memo["controlled layers"] = (steps, grow_layers(enc, fp.initial, [r for _, r in steps]), [])
+    steps, growing, found = fp.memo["controlled layers"]
+    if not any((layer & target) != enc.false for layer in found):
+        for layer in growing:
+            found.append(layer)
+            if (layer & target) != enc.false:
+                break
+    return steps, found
 
 
 def shortest_path(fp: Any, target: BDD) -> tuple[NetworkState, Path] | None:
