@@ -158,27 +158,26 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT) -> Fixpoint:
             break
         bad = new_bad
 
-    into_bad = {e: enc.pre(relation[e], bad) for e in network.events if e.controllable}
-    allowed = {e: enabled[e] & required[e] & ~bad & ~into_bad[e] for e in into_bad}
+    # the supervised reachability (below) stays in the good states: from a good state a
+    # controllable event is allowed where its requirements hold and it leads to no bad state, and
+    # an uncontrollable one never leads to one. So a controllable event needs only its
+    # requirements there (what its move reads: saturation keeps it low in the order), except where
+    # it can lead both to a bad and to a good state (nondeterministic), where the supervisor
+    # disables it: there it also needs to lead to no bad state. (The allowed sets read every
+    # counter of a fleet through the valid states.)
+    kept = ~bad
+    reaching = (initial & bad) == enc.false
+    allowed: dict[Event, BDD] = {}
+    guards: dict[Event, BDD] = {}
+    for e in network.controllable:
+        into_bad = enc.pre(relation[e], bad)
+        allowed[e] = enabled[e] & required[e] & kept & ~into_bad
+        if reaching:
+            mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept & required[e]
+            guards[e] = required[e] & ~into_bad if mixed != enc.false else required[e]
     reachable = enc.false
-    if (initial & bad) == enc.false:
-        # forward reachability under the supervisor, kept to the good states: from a good state a
-        # controllable event is allowed where its requirements hold and it leads to no bad state, and
-        # an uncontrollable one never leads to one. So a controllable event needs only its
-        # requirements (what its move reads: saturation keeps it low in the order), except where it
-        # can lead both to a bad and to a good state (nondeterministic), where the supervisor
-        # disables it: there it also needs to lead to no bad state. (The allowed sets read every
-        # counter of a fleet through the valid states.)
-        kept = ~bad
-        steps = []
-        for e in events:
-            step = relation[e]
-            if e.controllable:
-                guard = required[e]
-                if (into_bad[e] & enc.pre(relation[e], kept & enc.valid()) & kept & guard) != enc.false:
-                    guard &= ~into_bad[e]
-                step = step.restrict(guard)
-            steps.append(step)
+    if reaching:
+        steps = [relation[e].restrict(guards[e]) if e.controllable else relation[e] for e in events]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
     return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
