@@ -13,7 +13,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from orders import MODELS, run
+from orders import MODELS, rows
 
 MODELS.update(
     {
@@ -35,18 +35,13 @@ def main() -> None:
     print("| model | exploration | synthesis s | peak live nodes | images | preimages | peak MB | controlled states |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     for name in args.models.split(","):
-        states = set()
-        for explore in EXPLORATIONS:
-            f = run(name, "interaction", args.timeout, explore)
-            if f is None:
-                continue
-            states.add(f["states"])
-            print(
-                f"| {name} | {explore} | {f['s']:.2f} | {f['peak_live_nodes']:,} | {f['images']:,} | "
-                f"{f['preimages']:,} | {f['mb']:.0f} | {f['states']:,} |",
-                flush=True,
-            )
-        assert len(states) <= 1, f"{name}: the explorations disagree on the controlled states: {states}"
+        rows(
+            name,
+            [("interaction", explore) for explore in EXPLORATIONS],
+            args.timeout,
+            lambda f, _, explore: f"{explore} | {f['s']:.2f} | {f['peak_live_nodes']:,} | {f['images']:,} | "
+            f"{f['preimages']:,} | {f['mb']:.0f}",
+        )
 
 
 if __name__ == "__main__":
