@@ -76,7 +76,7 @@ class FakeNode(NodeCore):
 
     listening = True  # whether the robot subscribes to the node's command topics
 
-    def listeners(self, topic: Any) -> int:
+    def subscribers(self, publisher: Any) -> int:
         return int(self.listening)
 
     def publish(self, topic: Any, message: Any) -> bool:

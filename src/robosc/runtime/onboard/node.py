@@ -585,14 +585,19 @@ class NodeCore(object):
         if publisher is not None:
             publisher.publish(self.text_type(data=text))
 
-    # ---- implemented by the adapters -------------------------------------------------------
-
     def listeners(self, topic: Topic) -> int:
         """How many subscribers ``topic`` (a command topic of the robot) has now."""
-        raise NotImplementedError
+        return self.subscribers(topic.publisher)
 
     def text_subscribers(self, topic_name: str) -> int:
         """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""
+        publisher = self.text_publishers.get(topic_name)
+        return self.subscribers(publisher) if publisher is not None else 0
+
+    # ---- implemented by the adapters -------------------------------------------------------
+
+    def subscribers(self, publisher: Any) -> int:
+        """How many subscribers ``publisher`` (one the adapter made) has now."""
         raise NotImplementedError
 
     def call_service(self, call: Call, request: Any) -> bool:

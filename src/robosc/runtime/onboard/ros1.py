@@ -32,7 +32,6 @@ from .node import (
     VIEW_PAGE_TOPIC,
     Call,
     NodeCore,
-    Topic,
     controller_side,
     default_name,
 )
@@ -126,12 +125,8 @@ class SupervisorNode(NodeCore):
         NodeCore.cycle(self)
 
     # ---- services and actions of a controller --------------------------------------------------------
-    def listeners(self, topic: Topic) -> int:
-        return int(topic.publisher.get_num_connections())
-
-    def text_subscribers(self, topic_name: str) -> int:
-        publisher = self.text_publishers.get(topic_name)
-        return int(publisher.get_num_connections()) if publisher is not None else 0
+    def subscribers(self, publisher: Any) -> int:
+        return int(publisher.get_num_connections())
 
     def call_service(self, call: Call, request: Any) -> bool:
         return self.on_a_thread(self.call_now, call, request)

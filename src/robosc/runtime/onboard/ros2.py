@@ -45,7 +45,6 @@ from .node import (
     VIEW_PAGE_TOPIC,
     Call,
     NodeCore,
-    Topic,
     controller_side,
     default_name,
 )
@@ -209,12 +208,8 @@ class SupervisorNode(Node, NodeCore):
 
         state["timer"] = self.create_timer(POLL_SECONDS, self.callback(poll))
 
-    def listeners(self, topic: Topic) -> int:
-        return int(topic.publisher.get_subscription_count())
-
-    def text_subscribers(self, topic_name: str) -> int:
-        publisher = self.text_publishers.get(topic_name)
-        return int(publisher.get_subscription_count()) if publisher is not None else 0
+    def subscribers(self, publisher: Any) -> int:
+        return int(publisher.get_subscription_count())
 
     def call_service(self, call: Call, request: Any) -> bool:
         call.goal += 1
