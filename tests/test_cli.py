@@ -189,7 +189,14 @@ def test_explicit_synthesis_says_it_is_a_cross_check_with_the_figures_it_compare
     assert "symbolic synthesis: 1218 reachable states, a condition added to 1 of 10 controllable events; they agree" in done.stdout
     assert "0 of 0" not in done.stdout
     data = json.loads(run_in(None, "synthesize", "--explicit", "--json", str(EXAMPLES / "maze_solver.rscd")).stdout)
-    assert data["cross_check"] == {"method": "symbolic", "reachable_states": 128, "agree": True}
+    assert data["cross_check"] == {
+        "method": "symbolic",
+        "ok": True,
+        "reachable_states": 128,
+        "explicit_states_counted_so": 128,
+        "agree": True,
+        "differences": [],
+    }
 
 
 def test_synthesize_stats_prints_effort_that_does_not_depend_on_the_machine() -> None:

@@ -28,6 +28,7 @@ if TYPE_CHECKING:
     from robosc.runtime.simulator import Simulator
     from robosc.sim.run import Report
     from robosc.sim.world import World
+    from robosc.synthesis.compare import Comparison
     from robosc.synthesis.options import SynthesisOptions
     from robosc.synthesis.result import SynthesisResult
 
@@ -162,6 +163,23 @@ def synthesize_model(model: Model, method: str = "symbolic", options: SynthesisO
     if method != "symbolic":
         raise ValueError(f"unknown synthesis method '{method}' (symbolic or explicit)")
     return synthesize_symbolic(network, options or DEFAULT)
+
+
+def cross_check(model: Model, options: SynthesisOptions | None = None) -> tuple[SynthesisResult, SynthesisResult, Comparison]:
+    """Explicit-state synthesis of a checked model, the symbolic method (``options``: monolithic
+    or counted) on the same network, and how they compare state by state and event by event
+    (:class:`robosc.synthesis.compare.Comparison`; a counted result's states are orbits, and the
+    explicit states are counted so)."""
+    from robosc.plant import build_network
+    from robosc.synthesis.compare import compare
+    from robosc.synthesis.explicit import synthesize_explicit
+    from robosc.synthesis.options import DEFAULT
+    from robosc.synthesis.symbolic import synthesize_symbolic
+
+    network = build_network(model)
+    explicit = synthesize_explicit(network)
+    symbolic = synthesize_symbolic(network, options or DEFAULT)
+    return explicit, symbolic, compare(explicit, symbolic)
 
 
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:

@@ -7,12 +7,13 @@ from typing import Any
 
 import click
 
-from robosc.api import SynthesisResult, synthesize_model
+from robosc.api import SynthesisResult, cross_check, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, say, width
 from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.plant.show import show_network as network_listing
+from robosc.synthesis.compare import Comparison
 from robosc.synthesis.options import (
     EDGE_ORDERS,
     EXPLORATIONS,
@@ -94,7 +95,7 @@ def print_warnings(warnings: list[Diagnostic]) -> None:
         click.echo(render_text(diagnostic, sources, columns), err=True)
 
 
-def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = None) -> None:
+def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None = None) -> None:
     # fitted to the terminal (or COLUMNS); piped to a file or another program without
     # COLUMNS, each condition and sentence stays on one line
     columns = width()
@@ -103,6 +104,9 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         click.echo(fill(text, columns, indent))
 
     name = result.network.model.name
+    if result.method == "explicit":
+        _print_cross_check(result, cross_check, show)
+        return
     if not result.ok:
         explanation = result.explanation
         assert explanation is not None
@@ -118,9 +122,6 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
         show(f"  why: {explanation.reason}")
         for fix in explanation.fixes:
             show(f"  fix: {fix}")
-        return
-    if result.method == "explicit":
-        _print_cross_check(result, cross_check, show)
         return
     rows = []
     for guard in result.guards:
@@ -150,23 +151,32 @@ def print_result(result: SynthesisResult, cross_check: SynthesisResult | None = 
     )
 
 
-def _agree(explicit: SynthesisResult, symbolic: SynthesisResult) -> bool:
-    """Whether the two methods found the same: a supervisor or none, and as many states."""
-    return explicit.ok == symbolic.ok and explicit.reachable_states == symbolic.reachable_states
-
-
-def _print_cross_check(result: SynthesisResult, symbolic: SynthesisResult | None, show: Any) -> None:
+def _print_cross_check(result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None, show: Any) -> None:
     """Explicit-state synthesis computes the supervisor's states, not conditions per event: it
     is a cross-check of the symbolic method, and says so with the figures it compares."""
     plant = result.details.get("plant_states")
     show(f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
         "it computes states, not conditions per event):", "    ")
-    show(f"  uncontrolled plant: {plant} states; controlled system: {result.reachable_states} reachable states "
-        f"({result.seconds * 1000:.1f} ms)", "    ")
-    if symbolic is not None:
-        verdict = "they agree" if _agree(result, symbolic) else click.style("they DISAGREE: please report this model", fg="red", bold=True)
-        show(f"  symbolic synthesis: {symbolic.reachable_states} reachable states, a condition added to "
-            f"{len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events; {verdict}", "    ")
+    controlled = f"{result.reachable_states} reachable states" if result.ok else "no supervisor"
+    show(f"  uncontrolled plant: {plant} states; controlled system: {controlled} ({result.seconds * 1000:.1f} ms)", "    ")
+    if cross_check is None:
+        return
+    symbolic, comparison = cross_check
+    if not symbolic.ok:
+        found = "no supervisor"
+    elif "counted" in symbolic.details:
+        found = (f"{symbolic.reachable_states} reachable states counted (robots in the same states, in any order, "
+            f"count once; explicit: {comparison.reference_states} counted so)")
+    else:
+        found = f"{symbolic.reachable_states} reachable states"
+    if symbolic.ok:
+        found += f", a condition added to {len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events"
+    verdict = "they agree in every controlled state and event" if comparison.agree else click.style(
+        "they DISAGREE: please report this model", fg="red", bold=True
+    )
+    show(f"  {symbolic.method} synthesis: {found}; {verdict}", "    ")
+    for difference in comparison.differences:
+        show(f"    {difference}", "      ")
 
 
 def _order(context: click.Context, parameter: click.Parameter, value: str) -> str:
@@ -243,8 +253,11 @@ def synthesize(
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
     options = SynthesisOptions(order, reorder, fleet, edges, explore)
-    result = synthesize_model(model, "explicit" if explicit else "symbolic", options)
-    cross_check = synthesize_model(model, options=options) if explicit and result.ok else None
+    comparison = None
+    if explicit:
+        result, symbolic, comparison = cross_check(model, options)
+    else:
+        result = synthesize_model(model, "symbolic", options)
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()
@@ -255,15 +268,18 @@ def synthesize(
         data = as_json(result, warnings)
         if stats:
             data["effort"] = result.details.get("effort")
-        if cross_check is not None:
+        if comparison is not None:
             data["cross_check"] = {
-                "method": cross_check.method,
-                "reachable_states": cross_check.reachable_states,
-                "agree": _agree(result, cross_check),
+                "method": symbolic.method,
+                "ok": symbolic.ok,
+                "reachable_states": symbolic.reachable_states if symbolic.ok else None,
+                "explicit_states_counted_so": comparison.reference_states,
+                "agree": comparison.agree,
+                "differences": list(comparison.differences),
             }
         click.echo(json.dumps(data, indent=2))
     else:
-        print_result(result, cross_check)
+        print_result(result, (symbolic, comparison) if comparison is not None else None)
         effort: Any = result.details.get("effort")
         if stats and effort is not None:
             say(

@@ -119,6 +119,20 @@ class Network:
     def event(self, name: str) -> Event:
         return next(e for e in self.events if e.name == name)
 
+    def branching(self, event: Event) -> bool:
+        """Whether ``event`` may have several outcomes from one state: some automaton has two
+        of its edges from one location, or an edge sets a variable to any value. (Two edges
+        whose guards never hold together count too: the answer is "may".)"""
+        for automaton in self.automata:
+            if event not in automaton.alphabet:
+                continue
+            sources = [e.source for e in automaton.edges if e.event is event]
+            if len(sources) != len(set(sources)):
+                return True
+            if any(u.value is None for e in automaton.edges if e.event is event for u in e.updates):
+                return True
+        return False
+
 
 def received_type(event: Event) -> m.DataType | None:
     """The type of the data the controller receives with an uncontrollable event

@@ -130,8 +130,9 @@ class _Exit:
     """One way out of a component's location, and what stops it in a state."""
 
     event: Event
-    status: str  # "can happen", "cannot happen", "forbidden", "disabled", "blocks on"
+    status: str  # "can happen", "cannot happen", "forbidden", "disabled", "blocks on", "branches"
     requirement: Requirement | None = None
+    outcomes: tuple[str, ...] = ()  # "branches": where it may lead
 
 
 @record(eq=False)
@@ -183,11 +184,14 @@ def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[
             broken = [r for r in network.requirements_on(event) if not asked.holds(r, state)]
             if broken:
                 exits.append(_Exit(event, "forbidden", broken[0]))
+            elif possible and network.branching(event):
+                outcomes = tuple(f"{automaton.name}.{e.target.name}" for e in automaton.edges if e.source is location and e.event is event)
+                exits.append(_Exit(event, "branches", outcomes=outcomes))
             else:
                 exits.append(_Exit(event, "blocks on" if possible else "disabled"))
         if any(e.status == "can happen" for e in exits):
             continue
-        found.append((automaton, location, exits))
+        found.append((automaton, location, list(dict.fromkeys(exits))))  # an event's several edges: once
     return found
 
 
@@ -204,6 +208,11 @@ def ways_out(fp: Any, state: NetworkState) -> list[str]:
                 reasons.append(f"{e.event.name} is forbidden here by {e.requirement.description}")
             elif e.status == "disabled":
                 reasons.append(f"{e.event.name} cannot happen here")
+            elif e.status == "branches":
+                reasons.append(
+                    f"{e.event.name} may lead to {' or '.join(e.outcomes)}, and the supervisor can only allow or forbid "
+                    "it as a whole: it forbids it where one of them blocks"
+                )
             else:
                 reasons.append(f"{e.event.name} leads on to states that block as well")
         found.append(f"{automaton.name} stays in {location.name} ({'; '.join(reasons) or 'it has no way out'})")

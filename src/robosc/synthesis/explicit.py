@@ -136,6 +136,13 @@ def synthesize_explicit(network: Network, max_states: int = 200_000) -> Synthesi
             required_ok[(state, event)] = all(
                 _holds(r.condition, locations, values) for r in network.requirements_on(event)
             )
+    marker = network.marker
+
+    def marked(state: NetworkState) -> bool:
+        if not all(loc.marked for loc in state.locations):
+            return False
+        return marker is None or _holds(marker, set(state.locations), dict(zip(network.variables, state.values, strict=True)))
+
     predecessors: dict[NetworkState, list[tuple[Event, NetworkState]]] = {s: [] for s in order}
     for state in order:
         for event, target in transitions[state]:
@@ -150,14 +157,17 @@ def synthesize_explicit(network: Network, max_states: int = 200_000) -> Synthesi
                 if not event.controllable and source not in bad:
                     bad.add(source)
                     stack.append(source)
-        good = {s for s in order if s not in bad and all(loc.marked for loc in s.locations)}
+        good = {s for s in order if s not in bad and marked(s)}
         stack = list(good)
-        while stack:  # nonblocking: who can reach a marked state through good states
-            state = stack.pop()
+        while stack:  # nonblocking: who can reach a marked state through good states, by events
+            state = stack.pop()  # the supervisor may allow there (a controllable one: no outcome bad)
             for event, source in predecessors[state]:
-                if source not in bad and source not in good and required_ok[(source, event)]:
-                    good.add(source)
-                    stack.append(source)
+                if source in bad or source in good or not required_ok[(source, event)]:
+                    continue
+                if event.controllable and any(e is event and t in bad for e, t in transitions[source]):
+                    continue
+                good.add(source)
+                stack.append(source)
         new_bad = {s for s in order if s not in good}
         if new_bad == bad:
             break

@@ -95,13 +95,18 @@ class Robots:
         ``spare`` only if no other is there (kept for the restricted event at the end)."""
         move = self.supervisor.fleet.moves.get(event)
         if move is not None:
-            group, local = move
-            here = [a for a in group.agents if self.where[id(a)] == local.source]
+            group, outcomes = move
+            source = outcomes[0].source
+            here = [a for a in group.agents if self.where[id(a)] == source]
             wanted = self.agent(prefer)
             kept = self.agent(spare)
             agent = wanted if wanted in here else next((a for a in here if a is not kept), here[0])
-            self.where[id(agent)] = local.target
-            event = self.back[id(agent)][local.event]
+            counts = [reached.values[self.counted_value[c]] for c in group.counters]
+            for outcome in outcomes:  # the outcome that leads to the counts reached
+                self.where[id(agent)] = outcome.target
+                if [sum(self.where[id(a)] == i for a in group.agents) for i in range(len(group.local))] == counts:
+                    break
+            event = self.back[id(agent)][outcomes[0].event]
         return event, self.state(reached)
 
     def agent(self, event: Event | None) -> Agent | None:

@@ -307,7 +307,17 @@ def _value(variable: m.Variable, value: object) -> m.Expr:
 class Translator:
     """Conditions over the fleet as conditions over counters. A *template* is written over
     shared state, the counters, and the representative's own state standing for the agent
-    the condition is about (``self``: the agent whose event it guards, None for none)."""
+    the condition is about (``self``: the agent whose event it guards, None for none).
+
+    Exact by construction (docs/synthesis-options.md, *Why counting is exact*): a part of a
+    condition that reads one other agent is read at each local state that agent may be in,
+    what is left reading shared state and ``self`` only; a chain of such parts over every
+    other agent of a group says "some" (``or``) or "every" (``and``) other agent is in a
+    local state where the part holds, and a count adds, local state by local state, the
+    counter times the number of the agent's terms that hold there. Anything else that names
+    an agent of a group (two other agents in one part, some agents and not others, agents
+    asked different things, a number read from another agent) raises :class:`NotSymmetric`
+    and synthesis is monolithic."""
 
     def __init__(self, network: Network, found: Sequence[Group]) -> None:
         self.network = network
@@ -317,13 +327,12 @@ class Translator:
             for agent in group.agents:
                 for name in _names(agent):
                     self.agent_of[name] = (group, agent)
-        self._agents: dict[int, frozenset[int]] = {}
-        self._predicates: dict[tuple[str, str, str], frozenset[int]] = {}
+        self.by_id = {id(a): (g, a) for g in self.groups for a in g.agents}
+        self._agents: dict[int, tuple[m.Expr, frozenset[int]]] = {}  # the expression kept: its id stays its own
 
     def agents_in(self, e: m.Expr) -> frozenset[int]:
         """The agents (by id) that ``e`` reads."""
-        key = id(e)
-        found = self._agents.get(key)
+        found = self._agents.get(id(e))
         if found is None:
             ids = set()
             for node in m.walk(e):
@@ -331,8 +340,8 @@ class Translator:
                     owner = self.agent_of.get(_owner(node))
                     if owner is not None:
                         ids.add(id(owner[1]))
-            found = self._agents[key] = frozenset(ids)
-        return found
+            found = self._agents[id(e)] = (e, frozenset(ids))
+        return found[1]
 
     def rename(self, e: m.Expr, agent: Agent) -> m.Expr:
         """``e`` with ``agent``'s own states and variables renamed to the representative's."""
@@ -353,22 +362,19 @@ class Translator:
             parts.append(m.Binary("=", m.VariableRef(variable, (), variable.type, NO_SPAN), _value(variable, value), m.BOOLEAN, NO_SPAN))
         return all_of(parts)
 
-    def _predicate(self, group: Group, e: m.Expr, agent: Agent) -> frozenset[int]:
-        """The local states (indices) where ``e``, over ``agent``'s own state only, holds."""
-        renamed = self.rename(e, agent)
-        key = (group.name, render(renamed), str(id(group)))
-        found = self._predicates.get(key)
-        if found is None:
-            holds = set()
-            for index, (locations, values) in enumerate(group.local):
-                environment = dict(zip(group.rep.variables, values, strict=True))
-                try:
-                    if evaluate(renamed, set(locations), environment):
-                        holds.add(index)
-                except (Undefined, KeyError) as exc:
-                    raise NotSymmetric(f"'{render(e)}' cannot be evaluated for one agent") from exc
-            found = self._predicates[key] = frozenset(holds)
-        return found
+    def residuals(self, group: Group, e: m.Expr, agent: Agent, me: Agent | None) -> tuple[m.Expr, ...]:
+        """For each local state of ``group``: ``e`` with ``agent`` (not ``me``) there, its own
+        states and variables replaced by their values; what is left reads shared state and
+        ``me`` (renamed to its representative's) only."""
+        found = []
+        for index in range(len(group.local)):
+            residual = settle(_placed(e, group, agent, index))
+            if me is not None:
+                residual = self.rename(residual, me)
+            if self.agents_in(residual) - ({id(me)} if me is not None else set()) - {id(group.rep)}:
+                raise NotSymmetric(f"'{render(e)}' reads two other agents in one part")
+            found.append(residual)
+        return tuple(found)
 
     def template(self, e: m.Expr, me: Agent | None) -> m.Expr:
         mine = id(me) if me is not None else None
@@ -381,11 +387,11 @@ class Translator:
             return self._chain(_flatten(e, e.op), e.op, me)
         if isinstance(e, m.Count):
             return self._count(e, me)
-        if len(others) == 1 and mine not in self.agents_in(e):  # of a group of two: `!R1.charging` for R0
+        if len(others) == 1 and _boolean(e):  # of a group of two: `!R1.charging` for R0
             return self._chain([e], "or", me)
-        if isinstance(e, m.Binary):
+        if isinstance(e, m.Binary):  # a comparison or sum of counts, say: each side read through the counters
             return m.Binary(e.op, self.template(e.left, me), self.template(e.right, me), e.type, e.span)
-        raise NotSymmetric(f"'{render(e)}' names one agent of a group of copies")
+        raise NotSymmetric(f"'{render(e)}' reads a value of one agent of a group of copies")
 
     def _buckets(
         self, operands: Sequence[m.Expr], me: Agent | None
@@ -395,25 +401,24 @@ class Translator:
         mine = id(me) if me is not None else None
         kept: list[m.Expr] = []
         buckets: dict[int, tuple[Group, Agent, list[m.Expr]]] = {}
-        by_id = {id(a): (g, a) for g in self.groups for a in g.agents}
         for operand in operands:
-            named = self.agents_in(operand)
-            others = named - {mine}
+            others = self.agents_in(operand) - {mine}
             if not others:
                 kept.append(self.rename(operand, me) if me is not None else operand)
-            elif len(others) == 1 and mine not in named:
+            elif len(others) == 1 and _boolean(operand):
                 (agent_id,) = others
-                group, agent = by_id[agent_id]
+                group, agent = self.by_id[agent_id]
                 buckets.setdefault(agent_id, (group, agent, []))[2].append(operand)
             else:
                 kept.append(self.template(operand, me))
         return kept, buckets
 
     def _over_group(
-        self, buckets: dict[int, tuple[Group, Agent, list[m.Expr]]], me: Agent | None, op: str
-    ) -> Iterator[tuple[Group, frozenset[int], bool]]:
-        """Per group: the local states where each other agent's part holds (the same for
-        all, or not symmetric), and whether ``me`` is one of the group."""
+        self, buckets: dict[int, tuple[Group, Agent, list[m.Expr]]], me: Agent | None, op: str | None
+    ) -> Iterator[tuple[Group, list[tuple[m.Expr, ...]], bool]]:
+        """Per group: for each of an other agent's parts (its operands joined by ``op``, or
+        each term for None), what it leaves at each local state (the same for every other agent,
+        or not symmetric); and whether ``me`` is one of the group."""
         per_group: dict[str, list[tuple[Group, Agent, list[m.Expr]]]] = {}
         for entry in buckets.values():
             per_group.setdefault(entry[0].name, []).append(entry)
@@ -423,45 +428,61 @@ class Translator:
             expected = {id(a) for a in group.agents} - ({id(me)} if mine_in else set())
             if {id(agent) for _, agent, _ in entries} != expected:
                 raise NotSymmetric(f"a condition names some agents of '{group.name}' and not the others")
-            predicates = {self._predicate(group, _join(op, parts), agent) for _, agent, parts in entries}
-            if len(predicates) != 1:
+            shapes = set()
+            parts: list[tuple[m.Expr, ...]] = []
+            for _, agent, operands in entries:
+                joined = [_join(op, operands)] if op is not None else operands
+                parts = sorted((self.residuals(group, part, agent, me) for part in joined), key=_rendered)
+                shapes.add(tuple(_rendered(p) for p in parts))
+            if len(shapes) != 1:
                 raise NotSymmetric(f"a condition asks different things of the agents of '{group.name}'")
-            yield group, predicates.pop(), mine_in
+            yield group, parts, mine_in
 
     def _chain(self, operands: Sequence[m.Expr], op: str, me: Agent | None) -> m.Expr:
         kept, buckets = self._buckets(operands, me)
-        for group, holds, mine_in in self._over_group(buckets, me, op):
+        for group, [residual], mine_in in self._over_group(buckets, me, op):
             parts = []
-            if op == "or":  # another agent of the group is in one of these local states
-                for index in sorted(holds):
-                    counter = group.counters[index]
-                    if mine_in:
-                        parts.append(any_of([_ge(counter, 2), all_of([negate(self.at(group, index)), _ge(counter, 1)])]))
-                    else:
-                        parts.append(_ge(counter, 1))
-                kept.append(any_of(parts))
-            else:  # every other agent of the group is in one of these local states
-                for index in range(len(group.local)):
-                    if index in holds:
+            for index, holds in enumerate(residual):
+                counter = group.counters[index]
+                if op == "or":  # another agent of the group is in a local state where its part holds
+                    if _constant(holds) is False:
                         continue
-                    counter = group.counters[index]
+                    some = _ge(counter, 1)
                     if mine_in:
-                        parts.append(any_of([_le(counter, 0), all_of([self.at(group, index), _le(counter, 1)])]))
-                    else:
-                        parts.append(_le(counter, 0))
-                kept.append(all_of(parts))
+                        some = any_of([_ge(counter, 2), all_of([negate(self.at(group, index)), _ge(counter, 1)])])
+                    parts.append(some if _constant(holds) is True else all_of([some, holds]))
+                else:  # every other agent of the group is in a local state where its part holds
+                    if _constant(holds) is True:
+                        continue
+                    none = _le(counter, 0)
+                    if mine_in:
+                        none = any_of([none, all_of([self.at(group, index), _le(counter, 1)])])
+                    parts.append(none if _constant(holds) is False else any_of([none, holds]))
+            kept.append(_join(op, parts))
         return _join(op, kept)
 
     def _count(self, e: m.Count, me: Agent | None) -> m.Expr:
         kept, buckets = self._buckets(e.terms, me)
         total: list[m.Expr] = [m.Count("", tuple(kept), m.BasicType(m.BasicKind.INTEGER, 0, len(kept)), e.span)] if kept else []
-        for group, holds, mine_in in self._over_group(buckets, me, "or"):
-            for index in sorted(holds):
-                counter = group.counters[index]
-                total.append(m.VariableRef(counter, (), counter.type, NO_SPAN))
-            if mine_in and holds:  # the agent itself is counted in the counters, not among the others
-                mine = any_of([self.at(group, index) for index in sorted(holds)])
-                total.append(m.Unary("-", m.Count("", (mine,), m.BasicType(m.BasicKind.INTEGER, 0, 1), e.span), m.INTEGER, e.span))
+        for group, residuals, mine_in in self._over_group(buckets, me, None):
+            mine: list[m.Expr] = []  # the terms an other agent has, were it ``me``
+            for index, counter in enumerate(group.counters):
+                holding = [r[index] for r in residuals if _constant(r[index]) is not False]
+                if not holding:
+                    continue
+                ref: m.Expr = m.VariableRef(counter, (), counter.type, NO_SPAN)
+                if any(_constant(h) is not True for h in holding):  # how many hold depends on shared state or on me
+                    weight: m.Expr = m.Count("", tuple(holding), m.BasicType(m.BasicKind.INTEGER, 0, len(holding)), e.span)
+                    total.append(m.Binary("*", ref, weight, m.INTEGER, e.span))
+                elif len(holding) == 1:
+                    total.append(ref)
+                else:
+                    total.append(m.Binary("*", ref, m.Literal(len(holding), m.INTEGER, e.span), m.INTEGER, e.span))
+                if mine_in:  # the agent itself is counted in the counters, not among the others
+                    mine += [all_of([self.at(group, index), h]) for h in holding]
+            if mine:
+                own = m.Count("", tuple(mine), m.BasicType(m.BasicKind.INTEGER, 0, len(mine)), e.span)
+                total.append(m.Unary("-", own, m.INTEGER, e.span))
         if not total:
             return m.Literal(0, m.INTEGER, e.span)
         result = total[0]
@@ -471,19 +492,61 @@ class Translator:
 
     def instantiate(self, template: m.Expr, group: Group, index: int) -> m.Expr:
         """A template with the representative in local state ``index``: its own state known."""
-        locations, values = group.local[index]
-        here = set(locations)
-        rep_locations = {loc for a in group.rep.automata for loc in a.locations}
-        known = dict(zip(group.rep.variables, values, strict=True))
+        return fold(_placed(template, group, group.rep, index))
 
-        def known_here(node: m.Expr) -> m.Expr | None:
-            if isinstance(node, m.StateRef) and node.state in rep_locations:
-                return TRUE if node.state in here else FALSE
-            if isinstance(node, m.VariableRef) and node.variable in known and not node.steps:
-                return _value(node.variable, known[node.variable])
+
+def _placed(e: m.Expr, group: Group, agent: Agent, index: int) -> m.Expr:
+    """``e`` with ``agent``'s own states and variables replaced by their values where the
+    representative's are in local state ``index``."""
+    mapping = group.to_rep[id(agent)]
+    locations, values = group.local[index]
+    here = set(locations)
+    known = dict(zip(group.rep.variables, values, strict=True))
+
+    def local(node: m.Expr) -> m.Expr | None:
+        if isinstance(node, m.StateRef) and node.state in mapping:
+            return TRUE if mapping[node.state] in here else FALSE
+        if isinstance(node, m.VariableRef) and node.variable in mapping:
+            if node.steps:
+                raise NotSymmetric(f"'{render(e)}' reads a part of an agent's variable")
+            rep = mapping[node.variable]
+            return _value(rep, known[rep])
+        return None
+
+    return replace(e, local)
+
+
+def _constant(e: m.Expr) -> bool | None:
+    return e.value if isinstance(e, m.Literal) and isinstance(e.value, bool) else None
+
+
+def _boolean(e: m.Expr) -> bool:
+    return isinstance(e.type, m.BasicType) and e.type.kind is m.BasicKind.BOOLEAN
+
+
+def _rendered(parts: Sequence[m.Expr]) -> tuple[str, ...]:
+    return tuple(render(p) for p in parts)
+
+
+def settle(e: m.Expr) -> m.Expr:
+    """``e`` with every part that reads no state or variable replaced by its value, and the
+    boolean constants folded away."""
+
+    def constant(node: m.Expr) -> m.Expr | None:
+        if isinstance(node, (m.Literal, m.EnumLiteral)):
+            return node
+        if any(isinstance(n, (m.StateRef, m.VariableRef, m.DataRef, m.Invalid)) for n in m.walk(node)):
             return None
+        try:
+            value = evaluate(node, set(), {})
+        except Undefined as exc:
+            raise NotSymmetric(f"'{render(node)}' has no value") from exc
+        if isinstance(value, m.EnumValue):
+            assert isinstance(node.type, m.EnumType)
+            return m.EnumLiteral(node.type, value, node.span)
+        return m.Literal(value, node.type, node.span)
 
-        return fold(replace(template, known_here))
+    return fold(replace(e, constant))
 
 
 def _join(op: str, parts: Sequence[m.Expr]) -> m.Expr:
@@ -496,11 +559,13 @@ def _join(op: str, parts: Sequence[m.Expr]) -> m.Expr:
 @record(eq=False)
 class Counted:
     """A network counted: the network synthesis runs on, its groups, and for each of its
-    events made for a move, the group and the move."""
+    events made for a robot's event from one local state, the group and the moves (one per
+    outcome: a controllable event with several is allowed only where none leads to a bad state,
+    as the robot's own event)."""
 
     network: Network
     groups: tuple[Group, ...]
-    moves: dict[Event, tuple[Group, Move]]
+    moves: dict[Event, tuple[Group, tuple[Move, ...]]]  # its outcomes: one event, source and move of the robot
     translator: Translator = field(repr=False)
 
 
@@ -548,38 +613,42 @@ def counted(network: Network, least: int = 2) -> Counted:
         for r in network.requirements
         if r.event not in agent_events
     ]
-    moves: dict[Event, tuple[Group, Move]] = {}
+    moves: dict[Event, tuple[Group, tuple[Move, ...]]] = {}
     markers: list[m.Expr] = []
     initial_values = {v: network.initial_values[v] for v in network.variables if v not in agent_variables}
     for group, group_moves in explored:
         templates = _check_requirements(network, translator, group)
         location = m.State("fleet", f"#{group.name}", True, True, NO_SPAN)
         edges: list[Edge] = []
+        branches: dict[tuple[Event, int], list[Move]] = {}  # a move's outcomes: one event, as the robot's
         for move in group_moves:
-            counter = group.counters[move.source]
+            branches.setdefault((move.event, move.source), []).append(move)
+        for (original, source), outcomes in branches.items():
+            counter = group.counters[source]
             event = Event(
-                f"{move.event.name}@{move.source}",
-                move.event.controllable,
-                move.event.kind,
-                move.event.communication,
-                move.event.transition,
-                move.event.provide,
+                f"{original.name}@{source}",
+                original.controllable,
+                original.kind,
+                original.communication,
+                original.transition,
+                original.provide,
             )
-            guard = _ge(counter, 1)
-            if move.guard is not None:
-                guard = all_of([guard, translator.instantiate(translator.template(move.guard, group.rep), group, move.source)])
-            updates: tuple[Update, ...] = ()
-            if move.source != move.target:
-                target = group.counters[move.target]
-                updates = (
-                    Update(counter, _add(counter, -1)),
-                    Update(target, _add(target, 1)),
-                )
-            edges.append(Edge(location, location, event, guard, updates))
+            for move in outcomes:
+                guard = _ge(counter, 1)
+                if move.guard is not None:
+                    guard = all_of([guard, translator.instantiate(translator.template(move.guard, group.rep), group, source)])
+                updates: tuple[Update, ...] = ()
+                if move.source != move.target:
+                    target = group.counters[move.target]
+                    updates = (
+                        Update(counter, _add(counter, -1)),
+                        Update(target, _add(target, 1)),
+                    )
+                edges.append(Edge(location, location, event, guard, updates))
             events.append(event)
-            moves[event] = (group, move)
-            for requirement in network.requirements_on(move.event):
-                condition = translator.instantiate(templates[id(requirement)], group, move.source)
+            moves[event] = (group, tuple(outcomes))
+            for requirement in network.requirements_on(original):
+                condition = translator.instantiate(templates[id(requirement)], group, source)
                 requirements.append(Requirement(event, condition, requirement.description, requirement.origin))
         automata.append(
             Automaton(f"#{group.name}", AutomatonKind.DATA, (location,), location, tuple(edges), frozenset(e.event for e in edges))
@@ -654,8 +723,8 @@ class CountedSupervisor:
                     self.agent_of_event[event] = (group, agent)
         # the representative's event -> the counted events of its moves (from each local state)
         self.counted_events: dict[Event, list[Event]] = {}
-        for counted_event, (_, move) in fleet.moves.items():
-            self.counted_events.setdefault(move.event, []).append(counted_event)
+        for counted_event, (_, outcomes) in fleet.moves.items():
+            self.counted_events.setdefault(outcomes[0].event, []).append(counted_event)
         self.index = {group.name: {s: i for i, s in enumerate(group.local)} for group in fleet.groups}
         self.by_name = {a.name: a for a in network.automata}  # the counted network rebuilds the shared ones
 
@@ -676,6 +745,19 @@ class CountedSupervisor:
                 counts[index[self.local(group, agent, where, values)]] += 1
             counted_values.update(zip(group.counters, counts, strict=True))
         return enc.state(locations, counted_values)
+
+    def key(self, state: Any) -> tuple[Any, ...]:
+        """The orbit of an original network state: its shared part, and how many agents of
+        each group are in each local state (hashable)."""
+        where = dict(zip(self.network.automata, state.locations, strict=True))
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        shared = tuple(where[self.by_name[a.name]] for a in self.fleet.network.automata if a.name in self.by_name)
+        counts = []
+        for group in self.fleet.groups:
+            index = self.index[group.name]
+            counts.append(tuple(sorted(index[self.local(group, agent, where, values)] for agent in group.agents)))
+        mine = {v for group in self.fleet.groups for agent in group.agents for v in agent.variables}
+        return shared, tuple(values[v] for v in self.network.variables if v not in mine), tuple(counts)
 
     @staticmethod
     def local(group: Group, agent: Agent, where: dict[Automaton, m.State], values: dict[m.Variable, object]) -> LocalState:
@@ -704,7 +786,7 @@ class CountedSupervisor:
         values = dict(zip(self.network.variables, state.values, strict=True))
         source = self.index[group.name][self.local(group, agent, where, values)]
         for counted_event in self.counted_of(event):
-            if self.fleet.moves[counted_event][1].source != source:
+            if self.fleet.moves[counted_event][1][0].source != source:
                 continue
             bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
             if (here & bdd) != enc.false:
@@ -801,7 +883,7 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         owner = supervisor.agent_of_event.get(event)
-        pairs = [(ce, fleet.moves[ce][1].source if owner is not None else None) for ce in supervisor.counted_of(event)]
+        pairs = [(ce, fleet.moves[ce][1][0].source if owner is not None else None) for ce in supervisor.counted_of(event)]
         parts = []
         for counted_event, source in pairs:
             care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
