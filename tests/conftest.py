@@ -4,6 +4,7 @@ import os
 import sys
 import uuid
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -22,6 +23,13 @@ def pytest_configure(config: pytest.Config) -> None:
     # and the tests read it as piped (tests that want a width set COLUMNS themselves)
     os.environ.pop("COLUMNS", None)
     os.unsetenv("COLUMNS")
+
+
+def pytest_terminal_summary(terminalreporter: Any) -> None:
+    """What the random-model oracle met (tests/test_oracle.py), when it ran."""
+    oracle = sys.modules.get("test_oracle")
+    for line in oracle.summary() if oracle is not None else []:
+        terminalreporter.write_line(line)
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:

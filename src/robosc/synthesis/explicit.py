@@ -11,7 +11,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from robosc.plant.network import Edge, Event, Network
-from robosc.record import record
+from robosc.record import field, record
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.result import SynthesisResult
 from robosc.synthesis.state import NetworkState, initial_state
@@ -30,20 +30,31 @@ def _holds(edge_guard: Any, locations: set[Any], values: dict[Any, Any]) -> bool
         return False
 
 
-def successors(network: Network, state: NetworkState, event: Event) -> Iterator[NetworkState]:
+class Edges:
+    """A network's edges by event, then by automaton (its index) and source location."""
+
+    def __init__(self, network: Network) -> None:
+        self.network = network
+        self.by_event: dict[Event, list[tuple[int, dict[Any, list[Edge]]]]] = {e: [] for e in network.events}
+        for index, automaton in enumerate(network.automata):
+            for event in automaton.alphabet:
+                by_source: dict[Any, list[Edge]] = {}
+                for edge in automaton.edges:
+                    if edge.event is event:
+                        by_source.setdefault(edge.source, []).append(edge)
+                self.by_event[event].append((index, by_source))
+
+
+def successors(network: Network | Edges, state: NetworkState, event: Event) -> Iterator[NetworkState]:
     """Every state ``event`` can lead to from ``state`` (none when it is disabled)."""
+    edges = network if isinstance(network, Edges) else Edges(network)
+    network = edges.network
     locations = set(state.locations)
     values = dict(zip(network.variables, state.values, strict=True))
     choices: list[list[tuple[int, Edge]]] = []
-    for index, automaton in enumerate(network.automata):
-        if event not in automaton.alphabet:
-            continue
+    for index, by_source in edges.by_event[event]:
         here = state.locations[index]
-        enabled = [
-            (index, e)
-            for e in automaton.edges
-            if e.event is event and e.source is here and _holds(e.guard, locations, values)
-        ]
+        enabled = [(index, e) for e in by_source.get(here, ()) if _holds(e.guard, locations, values)]
         if not enabled:
             return
         choices.append(enabled)
@@ -80,16 +91,28 @@ class ExplicitSupervisor:
     transitions: dict[NetworkState, list[tuple[Event, NetworkState]]]
     required_ok: dict[tuple[NetworkState, Event], bool]
     bad: set[NetworkState]
+    allowed: dict[NetworkState, frozenset[Event]] = field(default_factory=dict)  # allowed_events, kept
 
     def allows(self, event: Event, state: NetworkState) -> bool:
-        if state in self.bad or state not in self.transitions:
-            return False
-        targets = [t for e, t in self.transitions[state] if e is event]
-        if not targets:
-            return False
-        if not event.controllable:
-            return True
-        return self.required_ok[(state, event)] and all(t not in self.bad for t in targets)
+        return event in self.allowed_events(state)
+
+    def allowed_events(self, state: NetworkState) -> frozenset[Event]:
+        """The events the supervisor lets happen in ``state``: uncontrollable ones the plant allows,
+        controllable ones its requirements allow too, none of whose outcomes is bad."""
+        found = self.allowed.get(state)
+        if found is None:
+            found = frozenset()
+            if state not in self.bad and state in self.transitions:
+                outcomes: dict[Event, list[NetworkState]] = {}
+                for event, target in self.transitions[state]:
+                    outcomes.setdefault(event, []).append(target)
+                found = frozenset(
+                    e
+                    for e, targets in outcomes.items()
+                    if not e.controllable or (self.required_ok[(state, e)] and all(t not in self.bad for t in targets))
+                )
+            self.allowed[state] = found
+        return found
 
     def controlled_states(self) -> list[NetworkState]:
         """The states reachable under the supervisor, in breadth-first order."""
@@ -101,8 +124,9 @@ class ExplicitSupervisor:
         queue = deque([start])
         while queue:
             state = queue.popleft()
+            allowed = self.allowed_events(state)
             for event, target in self.transitions[state]:
-                if target not in reached and self.allows(event, state):
+                if target not in reached and event in allowed:
                     reached.add(target)
                     order.append(target)
                     queue.append(target)
@@ -116,11 +140,12 @@ def synthesize_explicit(network: Network, max_states: int = 200_000) -> Synthesi
     queue = deque([init])
     transitions[init] = []
     order = [init]
+    edges = Edges(network)
     while queue:
         state = queue.popleft()
         out = transitions[state]
         for event in network.events:
-            for target in successors(network, state, event):
+            for target in successors(edges, state, event):
                 out.append((event, target))
                 if target not in transitions:
                     if len(transitions) >= max_states:

@@ -150,6 +150,12 @@ class SynthesisResult:
         assert supervisor is not None
         return bool(supervisor.allows(found, state))
 
+    def allowed_events(self, state: NetworkState) -> frozenset[Event]:
+        """The events the supervisor lets happen in ``state``: those :meth:`allows` says yes to."""
+        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
+        assert supervisor is not None
+        return frozenset(supervisor.allowed_events(state))
+
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` lies inside the controlled behaviour (every requirement can be
         kept from it and a marked state stays reachable)."""

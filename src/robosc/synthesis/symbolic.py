@@ -57,6 +57,16 @@ class Fixpoint:
             return bool((here & self.allowed[event]) != self.enc.false)
         return bool((here & self.enabled[event] & ~self.bad) != self.enc.false)
 
+    def allowed_events(self, state: NetworkState) -> frozenset[Event]:
+        """The events the supervisor lets happen in ``state`` (:meth:`allows` for each, the state
+        encoded once)."""
+        here, false = self.state(state), self.enc.false
+        return frozenset(
+            e
+            for e in self.enc.network.events
+            if (here & (self.allowed[e] if e.controllable else self.enabled[e] & ~self.bad)) != false
+        )
+
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` is inside the controlled behaviour: no requirement can be
         forced to break from it and a marked state stays reachable."""

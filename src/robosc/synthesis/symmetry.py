@@ -728,11 +728,21 @@ class CountedSupervisor:
         self.index = {group.name: {s: i for i, s in enumerate(group.local)} for group in fleet.groups}
         self.by_name = {a.name: a for a in network.automata}  # the counted network rebuilds the shared ones
 
+    def _places(self, state: Any) -> tuple[dict[Automaton, m.State], dict[m.Variable, object], dict[int, int]]:
+        """An original network state's locations and values, and each agent's local state (by id)."""
+        where = dict(zip(self.network.automata, state.locations, strict=True))
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        places = {
+            id(agent): self.index[group.name][self.local(group, agent, where, values)]
+            for group in self.fleet.groups
+            for agent in group.agents
+        }
+        return where, values, places
+
     def _state(self, state: Any) -> Any:
         """The counted state of an original network state."""
         fleet, enc = self.fleet, self.fp.enc
-        where = dict(zip(self.network.automata, state.locations, strict=True))
-        values = dict(zip(self.network.variables, state.values, strict=True))
+        where, values, places = self._places(state)
         by_name = self.by_name
         locations = {
             a: where[by_name[a.name]] if a.name in by_name else a.initial for a in fleet.network.automata
@@ -740,24 +750,19 @@ class CountedSupervisor:
         counted_values = {v: values[v] for v in fleet.network.variables if v in values}
         for group in fleet.groups:
             counts = [0] * len(group.local)
-            index = self.index[group.name]
             for agent in group.agents:
-                counts[index[self.local(group, agent, where, values)]] += 1
+                counts[places[id(agent)]] += 1
             counted_values.update(zip(group.counters, counts, strict=True))
         return enc.state(locations, counted_values)
 
     def key(self, state: Any) -> tuple[Any, ...]:
         """The orbit of an original network state: its shared part, and how many agents of
         each group are in each local state (hashable)."""
-        where = dict(zip(self.network.automata, state.locations, strict=True))
-        values = dict(zip(self.network.variables, state.values, strict=True))
+        where, values, places = self._places(state)
         shared = tuple(where[self.by_name[a.name]] for a in self.fleet.network.automata if a.name in self.by_name)
-        counts = []
-        for group in self.fleet.groups:
-            index = self.index[group.name]
-            counts.append(tuple(sorted(index[self.local(group, agent, where, values)] for agent in group.agents)))
-        mine = {v for group in self.fleet.groups for agent in group.agents for v in agent.variables}
-        return shared, tuple(values[v] for v in self.network.variables if v not in mine), tuple(counts)
+        counted = tuple(values[v] for v in self.fleet.network.variables if v in values)
+        counts = tuple(tuple(sorted(places[id(agent)] for agent in group.agents)) for group in self.fleet.groups)
+        return shared, counted, counts
 
     @staticmethod
     def local(group: Group, agent: Agent, where: dict[Automaton, m.State], values: dict[m.Variable, object]) -> LocalState:
@@ -774,17 +779,21 @@ class CountedSupervisor:
         return self.counted_events.get(group.to_rep[id(agent)][event], [])
 
     def allows(self, event: Event, state: Any) -> bool:
-        here = self._state(state)
+        return self._allows(event, self._state(state), self._places(state)[2])
+
+    def allowed_events(self, state: Any) -> frozenset[Event]:
+        """The events the supervisor lets happen in ``state`` (the state counted once)."""
+        here, places = self._state(state), self._places(state)[2]
+        return frozenset(e for e in self.network.events if self._allows(e, here, places))
+
+    def _allows(self, event: Event, here: Any, places: dict[int, int]) -> bool:
         fp, enc = self.fp, self.fp.enc
         owner = self.agent_of_event.get(event)
         if owner is None:
             if event.controllable:
                 return bool((here & fp.allowed[event]) != enc.false)
             return bool((here & fp.enabled[event] & ~fp.bad) != enc.false)
-        group, agent = owner
-        where = dict(zip(self.network.automata, state.locations, strict=True))
-        values = dict(zip(self.network.variables, state.values, strict=True))
-        source = self.index[group.name][self.local(group, agent, where, values)]
+        source = places[id(owner[1])]
         for counted_event in self.counted_of(event):
             if self.fleet.moves[counted_event][1][0].source != source:
                 continue
