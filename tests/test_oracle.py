@@ -14,6 +14,7 @@ from hypothesis import HealthCheck, assume, given, settings
 
 from faudes_oracle import libfaudes_supervisor, robosc_figures
 from fleet_models import FEATURES, fleets
+from module_check import module_agrees
 from random_models import robots
 from robosc.api import check_text
 from robosc.plant import build_network
@@ -30,18 +31,23 @@ SEEN: collections.Counter[str] = collections.Counter()
 
 
 def summary() -> list[str]:
-    if not SEEN:
-        return []
-    lines = [
-        f"fleet oracle: {SEEN['models']} random fleets compared ({SEEN['too large']} left out: over {MAX_STATES} "
-        f"states); counted by the default method: {SEEN['counted (default)']}, counting pairs too: "
-        f"{SEEN['counted (pairs)']}; every one also against libFAUDES; no supervisor: {SEEN['no supervisor']}",
-    ]
-    lines += [f"  {feature}: {SEEN[feature]}" for feature in FEATURES]
+    lines = []
+    if SEEN["models"]:
+        lines.append(
+            f"fleet oracle: {SEEN['models']} random fleets compared ({SEEN['too large']} left out: over {MAX_STATES} "
+            f"states); counted by the default method: {SEEN['counted (default)']}, counting pairs too: "
+            f"{SEEN['counted (pairs)']}; every one also against libFAUDES; no supervisor: {SEEN['no supervisor']}"
+        )
+        lines += [f"  {feature}: {SEEN[feature]}" for feature in FEATURES]
+    if SEEN["modules"]:
+        lines.append(
+            f"generated modules: {SEEN['modules']} fleets run at random, {SEEN['module states']} states, "
+            "each decision the monolithic supervisor's"
+        )
     return lines
 
 
-def oracle(text: str) -> None:
+def oracle(text: str) -> collections.Counter[str]:
     """Every method on ``text``'s network, against explicit synthesis; libFAUDES against it."""
     checked = check_text(text)
     assert checked.model is not None, checked.render() + "\n" + text
@@ -59,19 +65,19 @@ def oracle(text: str) -> None:
     for name, result in results:
         comparison = compare(explicit, result)
         assert comparison.agree, f"{name} ({result.details.get('symmetry', result.method)}): {comparison.differences}\n{text}"
-    SEEN["counted (default)"] += default.method == "symmetric"
-    SEEN["counted (pairs)"] += pairs.method == "symmetric"
-    SEEN["no supervisor"] += not explicit.ok
     expected = libfaudes_supervisor(explicit)
     found = robosc_figures(explicit.details["supervisor"]) if explicit.ok else (0, 0)
     assert found == expected, f"robosc {found}, libFAUDES {expected}\n{text}"
+    return collections.Counter(
+        {"counted (default)": default.method == "symmetric", "counted (pairs)": pairs.method == "symmetric", "no supervisor": not explicit.ok}
+    )
 
 
 @settings(max_examples=EXAMPLES, deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(fleets())
 def test_random_fleets_every_method_gives_the_same_supervisor(model: tuple[str, frozenset[str]]) -> None:
     text, features = model
-    oracle(text)
+    SEEN.update(oracle(text))
     SEEN["models"] += 1
     SEEN.update(features)
 
@@ -81,3 +87,17 @@ def test_random_fleets_every_method_gives_the_same_supervisor(model: tuple[str, 
 def test_random_robots_with_events_of_several_outcomes_match_libfaudes(text: str) -> None:
     """Single robots (variables and guards too), where an event often has two outcomes."""
     oracle(text)
+
+
+@settings(max_examples=int(os.environ.get("ROBOSC_ORACLE_MODULES", "300")), deadline=None, database=None, suppress_health_check=list(HealthCheck))
+@given(fleets())
+def test_random_fleets_generated_module_decides_as_the_monolithic_supervisor(model: tuple[str, frozenset[str]]) -> None:
+    """A sample of the oracle's fleets: the module ``robosc generate`` writes from the default
+    method's result, run at random, allows what the monolithic supervisor allows."""
+    text, _ = model
+    network = build_network(check_text(text).model)
+    default, monolithic = synthesize_symbolic(network), synthesize_monolithic(network)
+    assert default.ok == monolithic.ok, text
+    assume(default.ok)
+    SEEN["modules"] += 1
+    SEEN["module states"] += module_agrees(default, monolithic, runs=2, steps=25)

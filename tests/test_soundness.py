@@ -11,7 +11,12 @@ from pathlib import Path
 
 import pytest
 
-from robosc.api import cross_check, load_model
+from module_check import module_agrees
+from robosc.api import cross_check, load_model, plan_supervisor, synthesize_model
+from robosc.plant import build_network
+from robosc.runtime.simulator import Lookahead, Simulator, Violation
+from robosc.synthesis.result import EventGuard, SynthesisResult
+from robosc.synthesis.symbolic import synthesize_monolithic, synthesize_symbolic
 from robosc.synthesis.warnings import synthesis_warnings
 
 MODELS = Path(__file__).parent / "models" / "soundness"
@@ -72,3 +77,40 @@ def test_synthesize_explicit_says_they_agree_on_each_reproduction(name: str):
     )
     data = json.loads(done.stdout)
     assert data["cross_check"]["agree"] is True and data["cross_check"]["differences"] == []
+
+
+@pytest.mark.parametrize("name", ["mixed_quantifier.rscd", "weighted_count.rscd", "two_outcomes_fleet.rscd"])
+def test_the_generated_module_decides_as_the_monolithic_supervisor_on_each_reproduction(name: str):
+    network = build_network(load_model(MODELS / name))
+    counted, monolithic = synthesize_symbolic(network), synthesize_monolithic(network)
+    assert counted.method == "symmetric"
+    assert module_agrees(counted, monolithic, runs=10, steps=40) >= 10
+
+
+def test_the_simulators_lookahead_finds_the_deadlock_a_supervisor_without_the_added_conditions_runs_into():
+    """The look-ahead judges the supervisor that runs (the guards), not synthesis' fixed point:
+    with the conditions synthesis added dropped, two robots busy behind the closed door block."""
+    result = synthesize_model(load_model(MODELS / "mixed_quantifier.rscd"))
+    class Trusting:  # a synthesis that is wrong the way issue 28's were: it sees nothing amiss
+        def allows(self, event, state):
+            return True
+
+        def controlled(self, state):
+            return True
+
+    without = SynthesisResult(
+        result.network, result.method, True, tuple(EventGuard(g.event, g.required, None) for g in result.guards),
+        details={"supervisor": Trusting()},
+    )
+    two_busy = result.state({"bot1": "busy", "bot2": "busy"})
+    assert Lookahead(without).reaches_marked(two_busy) is False
+    assert Lookahead(result).reaches_marked(result.state({"bot1": "busy"})) is True
+    sim = Simulator(without, plan_supervisor(without))
+    for event in ("bot1.go", "bot2.go"):
+        try:
+            sim.perform(event)
+        except Violation as violation:
+            assert "no marked state can be reached" in violation.reason and event == "bot2.go"
+            break
+    else:
+        raise AssertionError("the simulator let the fleet into the deadlock")

@@ -193,14 +193,19 @@ def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
 def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool, rate: float | None = None) -> int:
     import time
 
+    from robosc.runtime.simulator import SEARCH_LIMIT
+
     rng = random.Random(seed)
     start = time.monotonic()
+    sim.judge("the start", sim.network_state())
     for number in range(steps):
         _report(sim, sim.random_step(rng), quiet)
         if rate is not None:
             time.sleep(max(0.0, start + (number + 1) / rate - time.monotonic()))
+    unjudged = f" (searched for in all but {sim.unjudged} states: more than {SEARCH_LIMIT:,} states ahead)" if sim.unjudged else ""
     say(
-        f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable"
+        f"{steps} random steps, {len(sim.events)} events: every requirement held, a marked state stayed reachable "
+        f"under the supervisor that runs{unjudged}"
     )
     if sim.warnings:
         say(f"{len(sim.warnings)} warnings about data, e.g.: {sim.warnings[0]}")

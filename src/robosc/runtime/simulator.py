@@ -7,8 +7,9 @@ independently of the generated code, that:
 * the requirements on the event held in the state it happened in (evaluated on
   the model's expressions, not on the compiled guards);
 * a controllable event was allowed by the synthesized supervisor (the BDDs);
-* the state reached is inside the controlled behaviour, so a marked state is
-  still reachable.
+* the state reached is inside the controlled behaviour, and a marked state can
+  still be reached from it under the supervisor that runs (searched for over the
+  plant with the generated guards, not read from synthesis' fixed point).
 
 A failed check raises :class:`Violation` with the step, the event and the state.
 """
@@ -31,8 +32,67 @@ from robosc.runtime.module import module_name, render_module
 from robosc.runtime.onboard.values import Data, plain
 from robosc.runtime.plan import Plan
 from robosc.synthesis.evaluate import Undefined, evaluate
+from robosc.synthesis.explicit import Edges, successors
 from robosc.synthesis.result import SynthesisResult
 from robosc.synthesis.state import NetworkState, describe
+
+SEARCH_LIMIT = 100_000  # states a look-ahead visits before it gives up (then synthesis' own judgement stands)
+
+
+class Lookahead:
+    """Whether a marked state can still be reached from a state, under the supervisor the
+    generated module runs: a controllable event where the plant allows it and its guard (your
+    condition and the one synthesis added) holds, an uncontrollable one wherever the plant
+    allows it. Found by search over the plant, independently of synthesis' fixed point; what a
+    search finds is kept (states on a way to a marked state, states with none)."""
+
+    def __init__(self, result: SynthesisResult) -> None:
+        self.network = result.network
+        self.edges = Edges(self.network)
+        self.guards = {g.event: [c for c in (g.required, g.added) if c is not None] for g in result.guards}
+        self.good: set[NetworkState] = set()
+        self.stuck: set[NetworkState] = set()
+
+    def _allowed(self, event: Any, state: NetworkState) -> bool:
+        conditions = self.guards.get(event, ())
+        if not conditions:
+            return True
+        values = dict(zip(self.network.variables, state.values, strict=True))
+        try:
+            return all(bool(evaluate(c, set(state.locations), values)) for c in conditions)
+        except Undefined:
+            return False
+
+    def marked(self, state: NetworkState) -> bool:
+        return all(loc.marked for loc in state.locations)
+
+    def reaches_marked(self, start: NetworkState) -> bool | None:
+        """True or False; None when the search met :data:`SEARCH_LIMIT` states first."""
+        if start in self.good or self.marked(start):
+            return True
+        if start in self.stuck:
+            return False
+        parent: dict[NetworkState, NetworkState | None] = {start: None}
+        queue = [start]
+        for state in queue:  # grows while it is walked: breadth first
+            for event in self.network.events:
+                if event.controllable and not self._allowed(event, state):
+                    continue
+                for target in successors(self.edges, state, event):
+                    if target in parent or target in self.stuck:
+                        continue
+                    parent[target] = state
+                    if target in self.good or self.marked(target):
+                        step: NetworkState | None = target
+                        while step is not None:
+                            self.good.add(step)
+                            step = parent[step]
+                        return True
+                    if len(parent) > SEARCH_LIMIT:
+                        return None
+                    queue.append(target)
+        self.stuck.update(parent)
+        return False
 
 
 class Violation(Exception):
@@ -101,6 +161,8 @@ class Simulator:
             self._variables.append((variable_fields[f"{v.owner}.{v.name}"], values))
         self._before = self.network_state()
         self._violation: Violation | None = None
+        self.lookahead = Lookahead(result)
+        self.unjudged = 0  # states where the look-ahead gave up (synthesis' own judgement stood)
 
     # ---- state ---------------------------------------------------------------------------
     def network_state(self) -> NetworkState:
@@ -162,6 +224,7 @@ class Simulator:
                 "leads outside the controlled behaviour (no marked state reachable)",
                 describe(self.network, after),
             )
+        self.judge(name, after)
         if self.log is not None or self.on_event is not None:
             record = {
                 "time": round(time.monotonic() - self.start, 6),
@@ -175,6 +238,20 @@ class Simulator:
                 self.log.write(json.dumps(record, sort_keys=True) + "\n")
             if self.on_event is not None:
                 self.on_event(record)
+
+    def judge(self, name: str, state: NetworkState) -> None:
+        """A marked state can still be reached from ``state`` under the supervisor the module runs
+        (:class:`Lookahead`), or :class:`Violation`; a search that gives up is counted."""
+        found = self.lookahead.reaches_marked(state)
+        if found is None:
+            self.unjudged += 1
+        elif not found:
+            raise Violation(
+                self.step,
+                name,
+                "no marked state can be reached from here under the supervisor that runs (it blocks)",
+                describe(self.network, state),
+            )
 
     # ---- commands -------------------------------------------------------------------------
     def tick(self) -> Outcome:

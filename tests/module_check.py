@@ -1,0 +1,44 @@
+"""The generated supervisor module against a reference supervisor, on random runs: in every
+state a run reaches, the module allows exactly the controllable events the reference allows,
+and expects exactly the uncontrollable events the plant can take there."""
+
+from __future__ import annotations
+
+import random
+
+from robosc.api import plan_supervisor
+from robosc.runtime.simulator import Simulator
+from robosc.synthesis.result import SynthesisResult
+
+
+def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int = 3, steps: int = 30, seed: int = 0) -> int:
+    """Random runs of ``result``'s generated module, each decision compared with ``reference``
+    (synthesized on the same network); the number of states compared. Raises AssertionError at
+    the first difference (and the simulator's Violation where a step breaks its checks)."""
+    network = result.network
+    plan = plan_supervisor(result)
+    rng = random.Random(seed)
+    compared = 0
+    for run in range(runs):
+        sim = Simulator(result, plan, seed=seed + run)
+        for _ in range(steps):
+            state = sim.network_state()
+            allowed = reference.allowed_events(state)
+            wanted = sorted(e.name for e in allowed if e.controllable)
+            possible = sorted(e.name for e in network.uncontrollable if any(True for _ in _targets(reference, state, e)))
+            assert sorted(sim.allowed()) == wanted, f"in [{sim.describe()}]: the module allows {sorted(sim.allowed())}, the reference {wanted}"
+            assert sorted(sim.expected()) == possible, f"in [{sim.describe()}]: the module expects {sorted(sim.expected())}, the plant {possible}"
+            compared += 1
+            options = [("perform", name) for name in wanted] + [("deliver", name) for name in possible]
+            if not options:
+                break
+            how, name = rng.choice(options)
+            outcome = sim.perform(name) if how == "perform" else sim.deliver(name, sim.random_data(name, rng))
+            assert outcome.events, f"{name}: {outcome.messages}"
+    return compared
+
+
+def _targets(reference: SynthesisResult, state, event):
+    from robosc.synthesis.explicit import successors
+
+    return successors(reference.network, state, event)
