@@ -8,7 +8,16 @@ from typing import Any
 import click
 
 from robosc.api import SynthesisResult, cross_check, synthesize_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, load_robot, say, width
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    exit_with,
+    include_option,
+    input_problem,
+    load_robot,
+    say,
+    width,
+)
 from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
@@ -255,7 +264,15 @@ def synthesize(
     options = SynthesisOptions(order, reorder, fleet, edges, explore)
     comparison = None
     if explicit:
-        result, symbolic, comparison = cross_check(model, options)
+        from robosc.synthesis.explicit import TooManyStates
+
+        try:
+            result, symbolic, comparison = cross_check(model, options)
+        except TooManyStates as exc:
+            raise input_problem(
+                f"{file}: explicit-state synthesis lists every state, and this model has {exc}: it is a cross-check "
+                "for small models (leave out --explicit, or try it on a smaller fleet)"
+            ) from None
     else:
         result = synthesize_model(model, "symbolic", options)
     if show_network:

@@ -133,7 +133,10 @@ class ExplicitSupervisor:
         return order
 
 
-def synthesize_explicit(network: Network, max_states: int = 200_000) -> SynthesisResult:
+MAX_STATES = 200_000  # explicit synthesis is a cross-check for small models
+
+
+def synthesize_explicit(network: Network, max_states: int | None = None) -> SynthesisResult:
     start = time.perf_counter()
     init = initial_state(network)
     transitions: dict[NetworkState, list[tuple[Event, NetworkState]]] = {}
@@ -148,8 +151,8 @@ def synthesize_explicit(network: Network, max_states: int = 200_000) -> Synthesi
             for target in successors(edges, state, event):
                 out.append((event, target))
                 if target not in transitions:
-                    if len(transitions) >= max_states:
-                        raise TooManyStates(f"more than {max_states} states")
+                    if len(transitions) >= (max_states or MAX_STATES):
+                        raise TooManyStates(f"more than {max_states or MAX_STATES} states")
                     transitions[target] = []
                     order.append(target)
                     queue.append(target)
