@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import NamedTuple
 
 from robosc.language import model as m
 from robosc.language.render import literal
 from robosc.plant.network import Automaton, AutomatonKind, Network
-from robosc.record import record
 
 
-@record
-class NetworkState:
+class NetworkState(NamedTuple):
+    """A named tuple: explicit synthesis and the simulator's look-ahead make and look up millions
+    (made, hashed and found in a set: 0.16 s and 0.12 s for 300,000, a record 0.50 s and 0.56 s)."""
+
     locations: tuple[m.State, ...]  # in the order of network.automata
     values: tuple[object, ...]  # in the order of network.variables
 
