@@ -75,6 +75,7 @@ def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -
         "method": result.method,
         "reachable_states": result.reachable_states if result.ok else None,
         "fleet": result.details.get("symmetry"),
+        "fleet_note": result.details.get("fleet_note"),
         "seconds": round(result.seconds, 6),
         "events": [
             {
@@ -131,6 +132,7 @@ def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Co
         show(f"  why: {explanation.reason}")
         for fix in explanation.fixes:
             show(f"  fix: {fix}")
+        _print_fleet_note(result, show)
         return
     rows = []
     for guard in result.guards:
@@ -158,6 +160,13 @@ def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Co
         f"{result.seconds * 1000:.1f} ms",
         "",
     )
+    _print_fleet_note(result, show)
+
+
+def _print_fleet_note(result: SynthesisResult, show: Any) -> None:
+    note = result.details.get("fleet_note")
+    if note:
+        show(f"note: {note}", "      ")
 
 
 def _print_cross_check(result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None, show: Any) -> None:

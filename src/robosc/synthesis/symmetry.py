@@ -40,7 +40,10 @@ LocalState = tuple[tuple[m.State, ...], tuple[object, ...]]  # locations of the 
 
 
 class NotSymmetric(Exception):
-    """Why the counter abstraction does not apply (synthesis is then monolithic)."""
+    """Why the counter abstraction does not apply (synthesis is then monolithic). ``robots``:
+    the groups of copies found, when there were some (a fleet that could not be counted)."""
+
+    robots: str = ""
 
 
 @record(eq=False)
@@ -376,6 +379,15 @@ class Translator:
             found.append(residual)
         return tuple(found)
 
+    def about(self, e: m.Expr, me: Agent | None, what: str, span: Any = None) -> m.Expr:
+        """:meth:`template`, a failure said of ``what`` (a requirement, a guard) and where it is."""
+        try:
+            return self.template(e, me)
+        except NotSymmetric as reason:
+            place = span if span is not None else e.span
+            at = f" ({place.path}:{place.line}:{place.column})" if place.line else ""
+            raise NotSymmetric(f"{what}{at}: {reason}") from None
+
     def template(self, e: m.Expr, me: Agent | None) -> m.Expr:
         mine = id(me) if me is not None else None
         others = self.agents_in(e) - {mine}
@@ -575,6 +587,19 @@ def counted(network: Network, least: int = 2) -> Counted:
     found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
         raise NotSymmetric(f"no {least} components are copies of each other")
+    try:
+        return _counted(network, found)
+    except NotSymmetric as reason:
+        reason.robots = "; ".join(_robots(group) for group in found)
+        raise
+
+
+def _robots(group: Group) -> str:
+    names = [a.component.name for a in group.agents]
+    return f"{names[0]} .. {names[-1]}" if len(names) > 2 else " and ".join(names)
+
+
+def _counted(network: Network, found: list[Group]) -> Counted:
     explored = [explore(network, group) for group in found]
     found = [group for group, _ in explored]
     translator = Translator(network, found)
@@ -591,8 +616,13 @@ def counted(network: Network, least: int = 2) -> Counted:
                 e.source,
                 e.target,
                 e.event,
-                translator.template(e.guard, None) if e.guard is not None else None,
-                tuple(Update(u.variable, translator.template(u.value, None) if u.value is not None else None) for u in e.updates),
+                translator.about(e.guard, None, f"the guard of {automaton.name}'s {e.event.name}") if e.guard is not None else None,
+                tuple(
+                    Update(u.variable, translator.about(u.value, None, f"{automaton.name}'s update of {u.variable.name}"))
+                    if u.value is not None
+                    else u
+                    for u in e.updates
+                ),
             )
             for e in automaton.edges
         )
@@ -609,7 +639,7 @@ def counted(network: Network, least: int = 2) -> Counted:
         )
     events = [e for e in network.events if e not in agent_events]
     requirements = [
-        Requirement(r.event, translator.template(r.condition, None), r.description, r.origin)
+        Requirement(r.event, translator.about(r.condition, None, r.description, _span(r)), r.description, r.origin)
         for r in network.requirements
         if r.event not in agent_events
     ]
@@ -636,7 +666,8 @@ def counted(network: Network, least: int = 2) -> Counted:
             for move in outcomes:
                 guard = _ge(counter, 1)
                 if move.guard is not None:
-                    guard = all_of([guard, translator.instantiate(translator.template(move.guard, group.rep), group, source)])
+                    template = translator.about(move.guard, group.rep, f"the guard of {group.rep.component.name}'s {original.name}")
+                    guard = all_of([guard, translator.instantiate(template, group, source)])
                 updates: tuple[Update, ...] = ()
                 if move.source != move.target:
                     target = group.counters[move.target]
@@ -687,6 +718,10 @@ def _add(counter: m.Variable, amount: int) -> m.Expr:
     return m.Binary(op, ref, m.Literal(abs(amount), m.INTEGER, NO_SPAN), m.INTEGER, NO_SPAN)
 
 
+def _span(requirement: Requirement) -> Any:
+    return requirement.origin.span if requirement.origin is not None else None
+
+
 def _check_requirements(network: Network, translator: Translator, group: Group) -> dict[int, m.Expr]:
     """Each agent's requirements say of it what the representative's say of the representative;
     the representative's templates, by requirement (``id``)."""
@@ -694,7 +729,11 @@ def _check_requirements(network: Network, translator: Translator, group: Group) 
     templates: dict[int, m.Expr] = {}
     for agent in group.agents:
         mapping = group.to_rep[id(agent)]
-        mine = {id(r): (r, translator.template(r.condition, agent)) for e in agent.events for r in network.requirements_on(e)}
+        mine = {
+            id(r): (r, translator.about(r.condition, agent, r.description, _span(r)))
+            for e in agent.events
+            for r in network.requirements_on(e)
+        }
         texts = sorted((mapping[r.event].name, render(template)) for r, template in mine.values())
         if expected is None:
             expected = texts
@@ -859,6 +898,12 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         fleet = counted(network, least)
     except NotSymmetric as reason:
         result = synthesize_monolithic(network, options)
+        details = dict(result.details, symmetry=f"monolithic: {reason}")
+        if reason.robots:  # a fleet: say why it was not counted
+            details["fleet_note"] = (
+                f"{reason.robots} are copies of each other, but synthesis did not count them: {reason}; "
+                "the supervisor is the monolithic method's (exact; slower on large fleets)"
+            )
         return SynthesisResult(
             result.network,
             result.method,
@@ -867,7 +912,7 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
             result.reachable_states,
             time.perf_counter() - start,
             result.explanation,
-            dict(result.details, symmetry=f"monolithic: {reason}"),
+            details,
         )
     fp = fixpoint(fleet.network, options)
     enc = fp.enc
@@ -952,8 +997,7 @@ def counted_warnings(result: SynthesisResult) -> list[Any]:
     plant = None
     for group in fleet.groups:
         rep = group.rep.automata[0]
-        names = [a.component.name for a in group.agents]
-        robots = f"{names[0]} .. {names[-1]}" if len(names) > 2 else " and ".join(names)
+        robots = _robots(group)
         for location in rep.locations:
             holding = [i for i, (locations, _) in enumerate(group.local) if locations[0] is location]
             somewhere = enc.false
