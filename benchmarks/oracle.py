@@ -10,7 +10,7 @@ allow, and how many states they count (orbits for a counted fleet). A model is g
 a method finds a supervisor where there is none (or none where there is one), allows a different
 set of events in some reached state, or counts a different number of states.
 
-Run:  python benchmarks/oracle.py [--models 1000] [--seed 28] [--baseline 5fa21e9]
+Run:  python benchmarks/oracle.py [--models 1000] [--seed 28] [--baseline 5fa21e9] [--files F ...]
 (needs the test extras: hypothesis, faudes)
 """
 
@@ -77,8 +77,8 @@ def orbit(network: Any, groups: list[Any], state: Any) -> tuple[Any, ...]:
     return tuple(parts)
 
 
-def reference(models: list[tuple[str, list[str]]]) -> list[dict[str, Any] | None]:
-    """This revision's explicit supervisor of each model (None: over MAX_STATES states)."""
+def reference(models: list[tuple[str, list[str]]], max_states: int) -> list[dict[str, Any] | None]:
+    """This revision's explicit supervisor of each model (None: over ``max_states`` states)."""
     from faudes_oracle import libfaudes_supervisor, robosc_figures
     from robosc.api import check_text
     from robosc.plant import build_network
@@ -89,7 +89,7 @@ def reference(models: list[tuple[str, list[str]]]) -> list[dict[str, Any] | None
     for text, _ in models:
         network = build_network(check_text(text).model)
         try:
-            explicit = synthesize_explicit(network, max_states=MAX_STATES)
+            explicit = synthesize_explicit(network, max_states=max_states)
         except TooManyStates:
             found.append(None)
             continue
@@ -136,26 +136,33 @@ def main() -> None:
     parser.add_argument("--models", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=28)
     parser.add_argument("--baseline", help="a git revision run side by side (e.g. 5fa21e9, before issue 28)")
+    parser.add_argument("--files", nargs="*", help="these model files instead of random fleets, a row each")
+    parser.add_argument("--max-states", type=int, default=MAX_STATES, help="larger models are left out")
     args = parser.parse_args()
     from fleet_models import FEATURES
     from fleet_synthesis import checkout
 
-    models = draw(args.models, args.seed)
-    references = reference(models)
+    if args.files:
+        models = [(Path(f).read_text(), [Path(f).stem]) for f in args.files]
+        features = [Path(f).stem for f in args.files]
+    else:
+        models, features = draw(args.models, args.seed), list(FEATURES)
+    references = reference(models, args.max_states)
     kept = [(m, r) for m, r in zip(models, references, strict=True) if r is not None]
     revisions = [("this revision", HERE.parent / "src")]
     with tempfile.TemporaryDirectory() as work:
         if args.baseline:
             revisions.append((args.baseline, checkout(args.baseline, Path(work))))
         answers = {name: run(source, models, references) for name, source in revisions}
-    print(f"{len(models)} random fleets drawn (seed {args.seed}), {len(kept)} compared "
-          f"({len(models) - len(kept)} over {MAX_STATES} states left out); reference: explicit synthesis, = libFAUDES on every one")
+    drawn = f"{len(models)} models" if args.files else f"{len(models)} random fleets drawn (seed {args.seed})"
+    print(f"{drawn}, {len(kept)} compared "
+          f"({len(models) - len(kept)} over {args.max_states} states left out); reference: explicit synthesis, = libFAUDES on every one")
     columns = [f"{name}: {method}" for name, _ in revisions for method in ("default", "monolithic")]
     counts: dict[str, collections.Counter[str]] = {c: collections.Counter() for c in columns}
     reasons: dict[str, collections.Counter[str]] = {c: collections.Counter() for c in columns}
     having: collections.Counter[str] = collections.Counter()
-    for index, ((_, features), expected) in enumerate(kept):
-        having.update(features)
+    for index, ((_, has), expected) in enumerate(kept):
+        having.update(has)
         having["all models"] += 1
         for name, _ in revisions:
             for method in ("default", "monolithic"):
@@ -163,9 +170,9 @@ def main() -> None:
                 why = answer.get("error") or wrong(answer, expected)
                 if why is not None:
                     column = f"{name}: {method}"
-                    counts[column].update([*features, "all models"])
+                    counts[column].update([*has, "all models"])
                     reasons[column][why] += 1
-    rows = ["all models", *FEATURES]
+    rows = ["all models", *features]
     width = max(len(f"{r} ({having[r]})") for r in rows) + 2
     print("models got wrong (of the models with the feature)")
     print("feature".ljust(width) + "".join(c.rjust(28) for c in columns))
