@@ -355,20 +355,21 @@ def replay(result: Any, restriction: Any) -> None:
     """The explanation's run is a run of the fleet under the (monolithic) supervisor ``result``:
     each step allowed there and reaching the state the explanation names; at its end the
     supervisor disables the event, which would lead outside the controlled behaviour."""
-    from robosc.synthesis.explicit import successors
+    from robosc.synthesis.explicit import Edges, successors
     from robosc.synthesis.state import describe, initial_state
 
     network = result.network
+    edges = Edges(network)
     here = initial_state(network)
     for step in restriction.path:
         event = network.event(step.event.name)
         assert result.allows(event, here), event.name
-        here = next(s for s in successors(network, here, event) if describe(network, s) == step.state)
+        here = next(s for s in successors(edges, here, event) if describe(network, s) == step.state)
         assert result.controlled(here)
     assert describe(network, here) == restriction.state
     restricted = network.event(restriction.event.name)
     assert not result.allows(restricted, here)
-    after = next(s for s in successors(network, here, restricted) if describe(network, s) == restriction.after)
+    after = next(s for s in successors(edges, here, restricted) if describe(network, s) == restriction.after)
     assert not result.controlled(after)
 
 

@@ -45,9 +45,9 @@ class Edges:
                 self.by_event[event].append((index, by_source))
 
 
-def successors(network: Network | Edges, state: NetworkState, event: Event) -> Iterator[NetworkState]:
-    """Every state ``event`` can lead to from ``state`` (none when it is disabled)."""
-    edges = network if isinstance(network, Edges) else Edges(network)
+def successors(edges: Edges, state: NetworkState, event: Event) -> Iterator[NetworkState]:
+    """Every state ``event`` can lead to from ``state`` (none when it is disabled), over the
+    edges of ``edges.network``."""
     network = edges.network
     locations = set(state.locations)
     values = dict(zip(network.variables, state.values, strict=True))

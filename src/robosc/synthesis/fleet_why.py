@@ -19,7 +19,7 @@ from robosc.language.render import literal
 from robosc.plant.network import Event, Network, Requirement
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.explain import Probe, blocking, breaking, cut_way, cut_words, fixes, likeliest, ways_out
-from robosc.synthesis.explicit import successors
+from robosc.synthesis.explicit import Edges, successors
 from robosc.synthesis.result import Explanation, Fix, Restriction, Step
 from robosc.synthesis.state import NetworkState, describe, describe_parts
 from robosc.synthesis.symmetry import Agent, CountedSupervisor, Group, start_of
@@ -144,7 +144,8 @@ def explicit_probe(network: Network) -> Probe:
         except Undefined:
             return False
 
-    return Probe(network, lambda event, state: next(successors(network, state, event), None) is not None, holds)
+    edges = Edges(network)
+    return Probe(network, lambda event, state: next(successors(edges, state, event), None) is not None, holds)
 
 
 def counted_reasons(fp: Any, candidates: list[Event]) -> list[Reasons]:

@@ -52,20 +52,17 @@ class Fixpoint:
 
     def allows(self, event: Event, state: NetworkState) -> bool:
         """Whether ``event`` can happen in ``state`` under the supervisor."""
-        here = self.state(state)
-        if event.controllable:
-            return bool((here & self.allowed[event]) != self.enc.false)
-        return bool((here & self.enabled[event] & ~self.bad) != self.enc.false)
+        return bool((self.state(state) & self.where(event)) != self.enc.false)
 
     def allowed_events(self, state: NetworkState) -> frozenset[Event]:
         """The events the supervisor lets happen in ``state`` (:meth:`allows` for each, the state
         encoded once)."""
         here, false = self.state(state), self.enc.false
-        return frozenset(
-            e
-            for e in self.enc.network.events
-            if (here & (self.allowed[e] if e.controllable else self.enabled[e] & ~self.bad)) != false
-        )
+        return frozenset(e for e in self.enc.network.events if (here & self.where(e)) != false)
+
+    def where(self, event: Event) -> BDD:
+        """The states where the supervisor lets ``event`` happen."""
+        return self.allowed[event] if event.controllable else self.enabled[event] & ~self.bad
 
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` is inside the controlled behaviour: no requirement can be

@@ -370,11 +370,12 @@ class Translator:
         states and variables replaced by their values; what is left reads shared state and
         ``me`` (renamed to its representative's) only."""
         found = []
+        mine = {id(self.agent_of[me.component.name][0].rep)} if me is not None else set()  # me, renamed
         for index in range(len(group.local)):
             residual = settle(_placed(e, group, agent, index))
             if me is not None:
                 residual = self.rename(residual, me)
-            if self.agents_in(residual) - ({id(me)} if me is not None else set()) - {id(group.rep)}:
+            if self.agents_in(residual) - mine:
                 raise NotSymmetric(f"'{render(e)}' reads two other agents in one part")
             found.append(residual)
         return tuple(found)
@@ -898,9 +899,9 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
         fleet = counted(network, least)
     except NotSymmetric as reason:
         result = synthesize_monolithic(network, options)
-        details = dict(result.details, symmetry=f"monolithic: {reason}")
+        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {reason}")
         if reason.robots:  # a fleet: say why it was not counted
-            details["fleet_note"] = (
+            fallback["fleet_note"] = (
                 f"{reason.robots} are copies of each other, but synthesis did not count them: {reason}; "
                 "the supervisor is the monolithic method's (exact; slower on large fleets)"
             )
@@ -912,7 +913,7 @@ def synthesize_counted(network: Network, options: Any = None, least: int = MIN_A
             result.reachable_states,
             time.perf_counter() - start,
             result.explanation,
-            details,
+            fallback,
         )
     fp = fixpoint(fleet.network, options)
     enc = fp.enc
