@@ -332,6 +332,7 @@ class Translator:
                     self.agent_of[name] = (group, agent)
         self.by_id = {id(a): (g, a) for g in self.groups for a in g.agents}
         self._agents: dict[int, tuple[m.Expr, frozenset[int]]] = {}  # the expression kept: its id stays its own
+        self._residuals: dict[Any, tuple[m.Expr, ...]] = {}
 
     def agents_in(self, e: m.Expr) -> frozenset[int]:
         """The agents (by id) that ``e`` reads."""
@@ -369,6 +370,10 @@ class Translator:
         """For each local state of ``group``: ``e`` with ``agent`` (not ``me``) there, its own
         states and variables replaced by their values; what is left reads shared state and
         ``me`` (renamed to its representative's) only."""
+        key = (id(group), self._shape(e, group.to_rep[id(agent)], self._names(me)))
+        cached = self._residuals.get(key)
+        if cached is not None:  # another agent's part, the same up to renaming: the same residuals
+            return cached
         found = []
         mine = {id(self.agent_of[me.component.name][0].rep)} if me is not None else set()  # me, renamed
         for index in range(len(group.local)):
@@ -378,7 +383,40 @@ class Translator:
             if self.agents_in(residual) - mine:
                 raise NotSymmetric(f"'{render(e)}' reads two other agents in one part")
             found.append(residual)
-        return tuple(found)
+        self._residuals[key] = tuple(found)
+        return self._residuals[key]
+
+    def _names(self, me: Agent | None) -> dict[Any, Any]:
+        if me is None:
+            return {}
+        return self.agent_of[me.component.name][0].to_rep[id(me)]
+
+    def _shape(self, e: m.Expr, theirs: dict[Any, Any], mine: dict[Any, Any]) -> Any:
+        """``e`` as a nested tuple in which another agent's states and variables (``theirs``:
+        renamed to the representative's) and ``me``'s (``mine``) are told apart by role, not
+        by name: two agents' parts with one shape leave the same residuals."""
+        if isinstance(e, m.StateRef):
+            ref: Any = e.state
+        elif isinstance(e, m.VariableRef):
+            ref = e.variable
+        elif isinstance(e, m.Unary):
+            return (e.op, self._shape(e.operand, theirs, mine))
+        elif isinstance(e, m.Binary):
+            return (e.op, self._shape(e.left, theirs, mine), self._shape(e.right, theirs, mine))
+        elif isinstance(e, m.Count):
+            return ("count", *(self._shape(term, theirs, mine) for term in e.terms))
+        elif isinstance(e, m.Literal):
+            return ("literal", repr(e.value), str(e.type))
+        elif isinstance(e, m.EnumLiteral):
+            return ("enum", e.value.name)
+        else:
+            return ("node", id(e))
+        steps = tuple(repr(s) for s in e.steps) if isinstance(e, m.VariableRef) else ()
+        if ref in theirs:
+            return ("theirs", id(theirs[ref]), steps)
+        if ref in mine:
+            return ("mine", id(mine[ref]), steps)
+        return ("shared", id(ref), steps)
 
     def about(self, e: m.Expr, me: Agent | None, what: str, span: Any = None) -> m.Expr:
         """:meth:`template`, a failure said of ``what`` (a requirement, a guard) and where it is."""
@@ -441,15 +479,17 @@ class Translator:
             expected = {id(a) for a in group.agents} - ({id(me)} if mine_in else set())
             if {id(agent) for _, agent, _ in entries} != expected:
                 raise NotSymmetric(f"a condition names some agents of '{group.name}' and not the others")
-            shapes = set()
-            parts: list[tuple[m.Expr, ...]] = []
+            each = []
             for _, agent, operands in entries:
                 joined = [_join(op, operands)] if op is not None else operands
-                parts = sorted((self.residuals(group, part, agent, me) for part in joined), key=_rendered)
-                shapes.add(tuple(_rendered(p) for p in parts))
-            if len(shapes) != 1:
+                each.append(sorted((self.residuals(group, part, agent, me) for part in joined), key=id))
+            # parts of one shape share their residuals (cached): told apart by identity, and only
+            # where that differs by what they leave, written out
+            if len({tuple(map(id, parts)) for parts in each}) != 1 and (
+                len({tuple(sorted(map(_rendered, parts))) for parts in each}) != 1
+            ):
                 raise NotSymmetric(f"a condition asks different things of the agents of '{group.name}'")
-            yield group, parts, mine_in
+            yield group, each[0], mine_in
 
     def _chain(self, operands: Sequence[m.Expr], op: str, me: Agent | None) -> m.Expr:
         kept, buckets = self._buckets(operands, me)
