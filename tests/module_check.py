@@ -21,6 +21,7 @@ def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int
     plan = plan_supervisor(result)
     rng = random.Random(seed)
     compared = 0
+    refused: set[tuple[object, str]] = set()
     for run in range(runs):
         sim = Simulator(result, plan, seed=seed + run)
         for _ in range(steps):
@@ -32,10 +33,14 @@ def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int
             assert sorted(sim.expected()) == possible, f"in [{sim.describe()}]: the module expects {sorted(sim.expected())}, the plant {possible}"
             compared += 1
             options = [("perform", name) for name in wanted] + [("deliver", name) for name in possible]
+            options = [o for o in options if (state, o[1]) not in refused]
             if not options:
                 break
             how, name = rng.choice(options)
             outcome = sim.perform(name) if how == "perform" else sim.deliver(name, sim.random_data(name, rng))
-            assert outcome.events, f"{name}: {outcome.messages}"
+            if not outcome.events:  # README, limitations: a report whose update leaves the range of a
+                # variable synthesis does not read is refused at run time, where the model takes it
+                assert how == "deliver" and any("is outside its type" in w for w in sim.warnings), (name, outcome, sim.warnings)
+                refused.add((state, name))
     return compared
 

@@ -23,8 +23,8 @@ from robosc.synthesis.explicit import TooManyStates, synthesize_explicit
 from robosc.synthesis.symbolic import synthesize_monolithic, synthesize_symbolic
 from robosc.synthesis.symmetry import synthesize_counted
 
-EXAMPLES = int(os.environ.get("ROBOSC_ORACLE_EXAMPLES", "1500"))
-MAX_STATES = 2_000  # the explicit reference enumerates them all; larger fleets are left out (and counted)
+EXAMPLES = int(os.environ.get("ROBOSC_ORACLE_EXAMPLES", "1200"))
+MAX_STATES = 1_000  # the explicit reference enumerates them all; larger fleets are left out (and counted)
 
 # what the run met: printed by conftest.py's terminal summary
 SEEN: collections.Counter[str] = collections.Counter()
@@ -89,7 +89,7 @@ def test_random_robots_with_events_of_several_outcomes_match_libfaudes(text: str
     oracle(text)
 
 
-@settings(max_examples=int(os.environ.get("ROBOSC_ORACLE_MODULES", "300")), deadline=None, database=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=int(os.environ.get("ROBOSC_ORACLE_MODULES", "200")), deadline=None, database=None, suppress_health_check=list(HealthCheck))
 @given(fleets())
 def test_random_fleets_generated_module_decides_as_the_monolithic_supervisor(model: tuple[str, frozenset[str]]) -> None:
     """A sample of the oracle's fleets: the module ``robosc generate`` writes from the default
