@@ -7,9 +7,12 @@ from __future__ import annotations
 import random
 
 from robosc.api import plan_supervisor
+from robosc.plant.network import Event
 from robosc.runtime.simulator import Simulator
+from robosc.synthesis.evaluate import evaluate
 from robosc.synthesis.explicit import Edges, successors
 from robosc.synthesis.result import SynthesisResult
+from robosc.synthesis.state import NetworkState
 
 
 def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int = 3, steps: int = 30, seed: int = 0) -> int:
@@ -30,7 +33,13 @@ def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int
             wanted = sorted(e.name for e in allowed if e.controllable)
             possible = sorted(e.name for e in network.uncontrollable if next(successors(edges, state, e), None) is not None)
             assert sorted(sim.allowed()) == wanted, f"in [{sim.describe()}]: the module allows {sorted(sim.allowed())}, the reference {wanted}"
-            assert sorted(sim.expected()) == possible, f"in [{sim.describe()}]: the module expects {sorted(sim.expected())}, the plant {possible}"
+            expected = set(sim.expected())
+            # README, limitations: the module also takes a report synthesis assumed could not come
+            # because an update would leave a variable's range (its edge is there, its guard holds)
+            beyond = {e.name for e in network.uncontrollable if e.name in expected and _edge_there(edges, state, e)}
+            assert set(possible) <= expected and expected - set(possible) <= beyond, (
+                f"in [{sim.describe()}]: the module expects {sorted(expected)}, the plant {possible}"
+            )
             compared += 1
             options = [("perform", name) for name in wanted] + [("deliver", name) for name in possible]
             options = [o for o in options if (state, o[1]) not in refused]
@@ -44,3 +53,14 @@ def module_agrees(result: SynthesisResult, reference: SynthesisResult, runs: int
                 refused.add((state, name))
     return compared
 
+
+
+def _edge_there(edges: Edges, state: NetworkState, event: Event) -> bool:
+    """Every automaton that takes part in ``event`` has an edge on it from where it is, whose
+    guard holds (where the updates lead is not asked)."""
+    values = dict(zip(edges.network.variables, state.values, strict=True))
+    here = set(state.locations)
+    for index, by_source in edges.by_event[event]:
+        if not any(e.guard is None or evaluate(e.guard, here, values) for e in by_source.get(state.locations[index], ())):
+            return False
+    return True

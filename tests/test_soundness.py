@@ -114,3 +114,16 @@ def test_the_simulators_lookahead_finds_the_deadlock_a_supervisor_without_the_ad
             break
     else:
         raise AssertionError("the simulator let the fleet into the deadlock")
+
+
+def test_the_module_check_allows_the_documented_report_beyond_a_range_and_nothing_else(monkeypatch):
+    """Found by the oracle in CI: bot2's second response would set n to 2; the plant refuses it, the
+    module takes it (README, limitations). The check passes, and fails once it may not allow that."""
+    import module_check
+
+    network = build_network(load_model(MODELS / "report_beyond_range.rscd"))
+    counted, monolithic = synthesize_symbolic(network), synthesize_monolithic(network)
+    assert module_agrees(counted, monolithic, runs=5, steps=40) == 200
+    monkeypatch.setattr(module_check, "_edge_there", lambda *args: False)
+    with pytest.raises(AssertionError, match="the module expects"):
+        module_agrees(counted, monolithic, runs=5, steps=40)
