@@ -18,19 +18,11 @@ from __future__ import annotations
 import contextlib
 import io
 
-from robosc.plant.network import Event, Network
-from robosc.synthesis.evaluate import evaluate
-from robosc.synthesis.state import NetworkState
+from robosc.plant.network import Event
+from robosc.synthesis.explicit import marked
 
 with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
     import faudes
-
-
-def _marked(network: Network, state: NetworkState) -> bool:
-    if not all(loc.marked for loc in state.locations):
-        return False
-    values = dict(zip(network.variables, state.values, strict=True))
-    return network.marker is None or bool(evaluate(network.marker, set(state.locations), values))
 
 
 def libfaudes_supervisor(explicit) -> tuple[int, int]:
@@ -60,7 +52,7 @@ def libfaudes_supervisor(explicit) -> tuple[int, int]:
             g.InsState(i + 1)
             if i == 0:
                 g.SetInitState(i + 1)
-            if _marked(network, state):
+            if marked(network, state):
                 g.SetMarkedState(i + 1)
     extra = len(order) + 1
     for source, event, targets in moves:

@@ -14,7 +14,8 @@ def literal(value: bool, span: Span) -> m.Literal:
     return m.Literal(value, m.BOOLEAN, span)
 
 
-def _bool(e: m.Expr) -> bool | None:
+def boolean_constant(e: m.Expr) -> bool | None:
+    """True or False where ``e`` is that literal, else None."""
     return e.value if isinstance(e, m.Literal) and isinstance(e.value, bool) else None
 
 
@@ -22,13 +23,13 @@ def fold(e: m.Expr) -> m.Expr:
     """``e`` with the boolean constants that deciding ``q != r`` left folded away."""
     if isinstance(e, m.Unary) and e.op == "!":
         operand = fold(e.operand)
-        value = _bool(operand)
+        value = boolean_constant(operand)
         if value is not None:
             return literal(not value, e.span)
         return e if operand is e.operand else m.Unary("!", operand, e.type, e.span)
     if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
         left, right = fold(e.left), fold(e.right)
-        a, b = _bool(left), _bool(right)
+        a, b = boolean_constant(left), boolean_constant(right)
         if e.op == "and":
             if a is False or b is False:
                 return literal(False, e.span)
@@ -62,7 +63,7 @@ def join(op: str, terms: Sequence[m.Expr], span: Span) -> m.Expr:
     unit = op == "and"
     kept: list[m.Expr] = []
     for term in terms:
-        value = _bool(term)
+        value = boolean_constant(term)
         if value is None:
             kept.append(term)
         elif value is not unit:

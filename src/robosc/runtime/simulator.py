@@ -32,7 +32,7 @@ from robosc.runtime.module import module_name, render_module
 from robosc.runtime.onboard.values import Data, plain
 from robosc.runtime.plan import Plan
 from robosc.synthesis.evaluate import Undefined, evaluate
-from robosc.synthesis.explicit import Edges, successors
+from robosc.synthesis.explicit import Edges, marked, successors
 from robosc.synthesis.result import SynthesisResult
 from robosc.synthesis.state import NetworkState, describe
 
@@ -63,12 +63,9 @@ class Lookahead:
         except Undefined:
             return False
 
-    def marked(self, state: NetworkState) -> bool:
-        return all(loc.marked for loc in state.locations)
-
     def reaches_marked(self, start: NetworkState) -> bool | None:
         """True or False; None when the search met :data:`SEARCH_LIMIT` states first."""
-        if start in self.good or self.marked(start):
+        if start in self.good or marked(self.network, start):
             return True
         if start in self.stuck:
             return False
@@ -82,7 +79,7 @@ class Lookahead:
                     if target in parent or target in self.stuck:
                         continue
                     parent[target] = state
-                    if target in self.good or self.marked(target):
+                    if target in self.good or marked(self.network, target):
                         step: NetworkState | None = target
                         while step is not None:
                             self.good.add(step)

@@ -30,6 +30,15 @@ def _holds(edge_guard: Any, locations: set[Any], values: dict[Any, Any]) -> bool
         return False
 
 
+def marked(network: Network, state: NetworkState) -> bool:
+    """Whether ``state`` is marked: every automaton in a marked location, and the network's
+    marker (a counted fleet's) holding."""
+    if not all(loc.marked for loc in state.locations):
+        return False
+    values = dict(zip(network.variables, state.values, strict=True))
+    return network.marker is None or _holds(network.marker, set(state.locations), values)
+
+
 class Edges:
     """A network's edges by event, then by automaton (its index) and source location."""
 
@@ -164,13 +173,6 @@ def synthesize_explicit(network: Network, max_states: int | None = None) -> Synt
             required_ok[(state, event)] = all(
                 _holds(r.condition, locations, values) for r in network.requirements_on(event)
             )
-    marker = network.marker
-
-    def marked(state: NetworkState) -> bool:
-        if not all(loc.marked for loc in state.locations):
-            return False
-        return marker is None or _holds(marker, set(state.locations), dict(zip(network.variables, state.values, strict=True)))
-
     predecessors: dict[NetworkState, list[tuple[Event, NetworkState]]] = {s: [] for s in order}
     for state in order:
         for event, target in transitions[state]:
@@ -185,7 +187,7 @@ def synthesize_explicit(network: Network, max_states: int | None = None) -> Synt
                 if not event.controllable and source not in bad:
                     bad.add(source)
                     stack.append(source)
-        good = {s for s in order if s not in bad and marked(s)}
+        good = {s for s in order if s not in bad and marked(network, s)}
         stack = list(good)
         while stack:  # nonblocking: who can reach a marked state through good states, by events
             state = stack.pop()  # the supervisor may allow there (a controllable one: no outcome bad)

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 from robosc.language import model as m
 from robosc.language.render import render
-from robosc.language.simplify import fold, replace
+from robosc.language.simplify import boolean_constant, fold, replace
 from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, Network, Requirement, Update
 from robosc.record import field, record
@@ -498,19 +498,19 @@ class Translator:
             for index, holds in enumerate(residual):
                 counter = group.counters[index]
                 if op == "or":  # another agent of the group is in a local state where its part holds
-                    if _constant(holds) is False:
+                    if boolean_constant(holds) is False:
                         continue
                     some = _ge(counter, 1)
                     if mine_in:
                         some = any_of([_ge(counter, 2), all_of([negate(self.at(group, index)), _ge(counter, 1)])])
-                    parts.append(some if _constant(holds) is True else all_of([some, holds]))
+                    parts.append(some if boolean_constant(holds) is True else all_of([some, holds]))
                 else:  # every other agent of the group is in a local state where its part holds
-                    if _constant(holds) is True:
+                    if boolean_constant(holds) is True:
                         continue
                     none = _le(counter, 0)
                     if mine_in:
                         none = any_of([none, all_of([self.at(group, index), _le(counter, 1)])])
-                    parts.append(none if _constant(holds) is False else any_of([none, holds]))
+                    parts.append(none if boolean_constant(holds) is False else any_of([none, holds]))
             kept.append(_join(op, parts))
         return _join(op, kept)
 
@@ -520,11 +520,11 @@ class Translator:
         for group, residuals, mine_in in self._over_group(buckets, me, None):
             mine: list[m.Expr] = []  # the terms an other agent has, were it ``me``
             for index, counter in enumerate(group.counters):
-                holding = [r[index] for r in residuals if _constant(r[index]) is not False]
+                holding = [r[index] for r in residuals if boolean_constant(r[index]) is not False]
                 if not holding:
                     continue
                 ref: m.Expr = m.VariableRef(counter, (), counter.type, NO_SPAN)
-                if any(_constant(h) is not True for h in holding):  # how many hold depends on shared state or on me
+                if any(boolean_constant(h) is not True for h in holding):  # how many hold depends on shared state or on me
                     weight: m.Expr = m.Count("", tuple(holding), m.BasicType(m.BasicKind.INTEGER, 0, len(holding)), e.span)
                     total.append(m.Binary("*", ref, weight, m.INTEGER, e.span))
                 elif len(holding) == 1:
@@ -567,10 +567,6 @@ def _placed(e: m.Expr, group: Group, agent: Agent, index: int) -> m.Expr:
         return None
 
     return replace(e, local)
-
-
-def _constant(e: m.Expr) -> bool | None:
-    return e.value if isinstance(e, m.Literal) and isinstance(e.value, bool) else None
 
 
 def _boolean(e: m.Expr) -> bool:
@@ -819,8 +815,8 @@ class CountedSupervisor:
         }
         return where, values, places
 
-    def _state(self, state: Any) -> Any:
-        """The counted state of an original network state."""
+    def _state(self, state: Any) -> tuple[Any, dict[int, int]]:
+        """The counted state of an original network state, and each agent's local state (by id)."""
         fleet, enc = self.fleet, self.fp.enc
         where, values, places = self._places(state)
         by_name = self.by_name
@@ -833,7 +829,7 @@ class CountedSupervisor:
             for agent in group.agents:
                 counts[places[id(agent)]] += 1
             counted_values.update(zip(group.counters, counts, strict=True))
-        return enc.state(locations, counted_values)
+        return enc.state(locations, counted_values), places
 
     def key(self, state: Any) -> tuple[Any, ...]:
         """The orbit of an original network state: its shared part, and how many agents of
@@ -859,31 +855,27 @@ class CountedSupervisor:
         return self.counted_events.get(group.to_rep[id(agent)][event], [])
 
     def allows(self, event: Event, state: Any) -> bool:
-        return self._allows(event, self._state(state), self._places(state)[2])
+        return self._allows(event, *self._state(state))
 
     def allowed_events(self, state: Any) -> frozenset[Event]:
         """The events the supervisor lets happen in ``state`` (the state counted once)."""
-        here, places = self._state(state), self._places(state)[2]
+        here, places = self._state(state)
         return frozenset(e for e in self.network.events if self._allows(e, here, places))
 
     def _allows(self, event: Event, here: Any, places: dict[int, int]) -> bool:
-        fp, enc = self.fp, self.fp.enc
+        fp, false = self.fp, self.fp.enc.false
         owner = self.agent_of_event.get(event)
         if owner is None:
-            if event.controllable:
-                return bool((here & fp.allowed[event]) != enc.false)
-            return bool((here & fp.enabled[event] & ~fp.bad) != enc.false)
+            return bool((here & fp.where(event)) != false)
         source = places[id(owner[1])]
-        for counted_event in self.counted_of(event):
-            if self.fleet.moves[counted_event][1][0].source != source:
-                continue
-            bdd = fp.allowed[counted_event] if event.controllable else fp.enabled[counted_event] & ~fp.bad
-            if (here & bdd) != enc.false:
-                return True
-        return False
+        return any(
+            (here & fp.where(counted_event)) != false
+            for counted_event in self.counted_of(event)
+            if self.fleet.moves[counted_event][1][0].source == source
+        )
 
     def controlled(self, state: Any) -> bool:
-        return bool((self._state(state) & self.fp.bad) == self.fp.enc.false)
+        return bool((self._state(state)[0] & self.fp.bad) == self.fp.enc.false)
 
 
 def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
