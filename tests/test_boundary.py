@@ -1,5 +1,4 @@
-"""Where the proof meets the robot, in-process (issue 21): the persisted state and what is
-refused of it, the hold until data comes, unreadable data, and a supervision layer that
+"""Where the proof meets the robot, in-process (issue 21): the hold until data comes, unreadable data, and a supervision layer that
 forwards a command only when it is exactly the data of an event the supervisor allows now
 (a property test over random messages of several types). The same on real ROS:
 test_boundary_ros.py."""
@@ -8,16 +7,13 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from pathlib import Path
 from typing import Any
 
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
-from robosc.runtime.onboard.persist import StateFile, default_path
 from robosc.runtime.onboard.values import Data
 from robosc.runtime.simulator import load_module
 from test_onboard import FakeNode, Float32, Int16, Twist
@@ -36,7 +32,7 @@ class Clock:
 
 
 def line_follower(**params: Any) -> FakeNode:
-    return FakeNode("examples/line_follower.rscd", "controller", resume=True, **params)
+    return FakeNode("examples/line_follower.rscd", "controller", **params)
 
 
 def commands(node: FakeNode, cycles: int = 20) -> list[float]:
@@ -57,139 +53,7 @@ def Float32Data(value: float) -> Float32:
     return message
 
 
-# ---- restarts ----------------------------------------------------------------------------------
-def test_a_restarted_node_resumes_its_state_and_does_not_move_with_the_stop_held() -> None:
-    node = line_follower(rate=20.0, seed=1)
-    feed(node)
-    assert MOVE in commands(node)
-    node.receive(node.inputs["/emergency_stop/stop"], None)
-    assert set(commands(node)) == {0.0}
-    path = node.state_file.path
-    assert path == default_path("line_follower_robosc") and os.environ["ROS_HOME"] in path
-    again = line_follower(rate=20.0, seed=1)  # as after kill -9: nothing but the file survives
-    assert again.resumed and any("resumed from" in text for _, text in again.logs)
-    assert again.supervisor.snapshot()["automata"]["EmergencyStop"] == "stopped"
-    assert commands(again) == []  # held: the scans and corrections must come again
-    feed(again)
-    assert set(commands(again)) == {0.0}, "moved with the emergency stop held"
-
-
 MOVE = 0.15
-
-
-@pytest.mark.parametrize(
-    ("damage", "why"),
-    [
-        (lambda text: text[: len(text) // 2], "corrupt"),  # truncated
-        (lambda text: text.replace('"stopped"', '"stoppeD"'), "corrupt (its checksum"),
-        (lambda text: "\x00\xff" * 10, "cannot be read"),
-        (lambda text: json.dumps({"body": {}, "sha256": "0"}), "corrupt"),
-    ],
-)
-def test_a_damaged_state_file_is_refused_and_the_node_starts_held(damage: Any, why: str) -> None:
-    node = line_follower()
-    feed(node)
-    node.receive(node.inputs["/emergency_stop/stop"], None)
-    path = Path(node.state_file.path)
-    path.write_bytes(damage(path.read_text()).encode("latin-1"))
-    again = line_follower()
-    assert not again.resumed
-    assert any(level == "error" and "refused: " + why in text for level, text in again.logs), again.logs
-    assert again.supervisor.snapshot()["automata"]["EmergencyStop"] == "in_service"  # the initial state
-    assert commands(again) == [] and again.supervisor.held
-
-
-def test_a_state_of_another_model_or_too_old_is_refused(tmp_path: Path) -> None:
-    clock = Clock()
-    file = StateFile(str(tmp_path / "s.json"), "LineFollower", "plan-a", max_age=60.0, clock=clock)
-    assert file.load() == (None, None)  # no file: a first start, nothing to say
-    assert file.save({"a": 1}) is True and file.save({"a": 1}) is False  # unchanged: not written again
-    assert StateFile(file.path, "LineFollower", "plan-a", 60.0, clock).load() == ({"a": 1}, None)
-    fields, why = StateFile(file.path, "LineFollower", "plan-b", 60.0, clock).load()
-    assert fields is None and why is not None and "of another supervisor" in why
-    fields, why = StateFile(file.path, "MazeSolver", "plan-a", 60.0, clock).load()
-    assert fields is None and why is not None and "of another supervisor" in why
-    clock.now += 61.0
-    fields, why = StateFile(file.path, "LineFollower", "plan-a", 60.0, clock).load()
-    assert fields is None and why is not None and why.startswith("stale")
-    clock.now -= 1000.0
-    fields, why = StateFile(file.path, "LineFollower", "plan-a", 60.0, clock).load()
-    assert fields is None and why is not None and "in the future" in why
-    assert not (tmp_path / "s.json.tmp").exists()  # written whole, then renamed
-
-
-def test_a_value_outside_its_domain_is_refused(tmp_path: Path) -> None:
-    node = line_follower()
-    feed(node)
-    file = node.state_file
-    fields = dict(file.last)
-    field = next(f[0] for f in node.supervisor.FIELDS if f[1] == "EmergencyStop")
-    for bad in ("nowhere", 3, None):
-        fields[field] = bad
-        file.last = None
-        file.save(fields)
-        again = line_follower()
-        assert not again.resumed and any("outside its domain" in text for _, text in again.logs)
-
-
-def test_a_call_in_flight_when_the_node_stopped_is_taken_as_failed() -> None:
-    from test_onboard import FakeNode as Base
-
-    class Node(Base):
-        def call_service(self, call: Any, request: Any) -> bool:
-            return True
-
-        def start_goal(self, call: Any, goal: Any) -> bool:
-            return True
-
-    class Request:
-        def __init__(self) -> None:
-            self.order, self.data = 0, False
-
-        @staticmethod
-        def get_fields_and_field_types() -> dict[str, str]:
-            return {"order": "int32", "data": "boolean"}
-
-    def node_with_calls() -> Node:
-        made = Node("examples/pick_and_light.rscd", "controller", resume=True, seed=1)
-        for call in made.service_calls + made.action_calls:
-            call.request = Request
-        return made
-
-    node = node_with_calls()
-    pose = Data({"position": {"x": 0.5, "y": 0.1, "z": 0.0}, "orientation": {"x": 0, "y": 0, "z": 0, "w": 1}})
-    node.receive(node.inputs["/camera/object"], pose)
-    for _ in range(50):
-        node.cycle()
-        if node.supervisor.snapshot()["communications"]["pick"] == "executing":
-            break
-    assert node.supervisor.snapshot()["communications"]["pick"] == "executing"
-    again = node_with_calls()
-    assert again.resumed
-    assert again.supervisor.snapshot()["communications"]["pick"] == "error"  # the goal is lost with the node
-    assert any("pick.u_error" in text and "taken as failed" in text for _, text in again.logs)
-
-
-def test_a_command_goes_out_only_after_the_state_it_leads_to_is_persisted() -> None:
-    node = FakeNode("examples/maze_solver.rscd", "controller", resume=True, tick_on_message=True)
-    seen: list[str] = []
-
-    def publish(topic: Any, message: Any) -> bool:  # what the file says when the command goes out
-        seen.append(json.loads(Path(node.state_file.path).read_text())["body"]["fields"][platform])
-        return True
-
-    platform = next(f[0] for f in node.supervisor.FIELDS if f[1] == "Platform")
-    node.publish = publish  # type: ignore[method-assign]
-    node.receive(node.inputs["/scan"], OBSTACLE)  # a wall: turn_left, which leads to turning
-    assert seen == ["turning"]
-
-
-def test_resume_can_be_switched_off() -> None:
-    node = line_follower()
-    feed(node)
-    node.receive(node.inputs["/emergency_stop/stop"], None)
-    fresh = FakeNode("examples/line_follower.rscd", "controller", resume=False)
-    assert not fresh.resumed and fresh.supervisor.snapshot()["automata"]["EmergencyStop"] == "in_service"
 
 
 # ---- data ------------------------------------------------------------------------------------
@@ -322,6 +186,5 @@ def test_every_example_module_loads_with_its_reads_and_domains() -> None:
         assert len(robot.PLAN) == 16
         assert all(len(f) == 5 for f in robot.FIELDS)
         assert {c.name for c in robot.COMMUNICATIONS} >= robot.WAITED
-        robot.restore(json.loads(json.dumps(robot.persistent())))  # what is persisted is taken back
     line = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "examples/line_follower.rscd"))))
     assert line.Robot.EVENT["move"].reads == {"scan", "correction"} and line.Robot.EVENT["halt"].reads == {"scan"}

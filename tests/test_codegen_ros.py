@@ -31,11 +31,12 @@ def depends(package: Path) -> set[str]:
 
 RUNTIME = {
     "__init__.py",
+    "belief.py",
+    "delivery.py",
     "live_server.py",
     "messages.py",
     "node.py",
     "recording.py",
-    "persist.py",
     "ros1.py",
     "ros2.py",
     "supervisor.py",

@@ -45,7 +45,7 @@ def big_log(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def test_log_records_every_event_with_the_state_after_it(big_log: Path) -> None:
     records = read_log(big_log)
-    assert len(records) > 9000
+    assert len(records) > 7500  # every event taken (an answer no component waits for is not one)
     names = {r.event for r in records}
     assert {"scan_front", "rotate_done", "movement", "turn_left"} <= names
     assert all(

@@ -89,7 +89,7 @@ def test_module_runs_on_python_38(tmp_path: Path) -> None:
         "print(s.tick())\n"  # nothing before the first scan
         "for e in ('scan_front', 'scan_right', 'scan_diag_right'): s.deliver(e, Data({'ranges': [5.0] * 360}))\n"
         "print(s.tick()); s.deliver('scan_front', Data({'ranges': [0.2]})); print(s.tick())\n"
-        "import onboard.node, onboard.recording, onboard.messages, onboard.live_server, onboard.persist\n"
+        "import onboard.node, onboard.recording, onboard.messages, onboard.live_server, onboard.delivery\n"
     )
     done = subprocess.run([str(python), "-c", script], cwd=tmp_path, capture_output=True, text=True, check=True)
     assert done.stdout.split() == ["None", "movement", "turn_left"]

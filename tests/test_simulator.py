@@ -146,7 +146,12 @@ def test_unknown_event_and_data_errors() -> None:
         sim.run("rotate_dne")
     with pytest.raises(CommandError, match="controllable"):
         sim.run("movement 3")
-    assert sim.run("rotate_done").messages == ()  # possible in every state (responsiveness)
+    before = sim.supervisor.snapshot()
+    # possible in every state (responsiveness), but no component answers it here: not an event
+    assert sim.run("rotate_done").messages == (
+        "ignored: rotate_done: Platform does not expect it where it is (ready)",
+    )
+    assert sim.supervisor.snapshot() == before
 
 
 def test_interactive_session() -> None:

@@ -94,6 +94,9 @@ class EventPlan:
     # with ANY where the model computes a value; None: it sends no data (the type's defaults)
     signature: str | None = None
     reads: tuple[str, ...] = ()  # controllable: communications whose received data its condition or data reads
+    # uncontrollable: (component location field, locations where the model answers it), for each component
+    # automaton that answers it, when one of them does not answer it everywhere (else None)
+    answers: tuple[tuple[str, tuple[str, ...]], ...] | None = None
 
     @property
     def sends(self) -> bool:
@@ -518,7 +521,33 @@ class _Planner:
             computed,
             signature,
             self.reads(event) if event.controllable else (),
+            None if event.controllable else self.answers(event),
         )
+
+    def answers(self, event: Event) -> tuple[tuple[str, tuple[str, ...]], ...] | None:
+        """Where the components answer the uncontrollable ``event`` with a transition the user
+        wrote (not the self-loop responsiveness adds): (field, locations) per component automaton
+        taking it; None when one of them answers it everywhere (it is always taken)."""
+        out = []
+        for automaton in self.network.automata:
+            if event not in automaton.alphabet or automaton.kind is not AutomatonKind.COMPONENT:
+                continue
+            component = automaton.component
+            assert component is not None and component.automaton is not None
+            sources = [
+                t.source
+                for t in component.automaton.transitions
+                if not isinstance(t, m.TauTransition) and event_of(self.network, t) is event
+            ]
+            if not sources:
+                continue
+            if None in sources or len(automaton.locations) == 1:
+                return None
+            names = tuple(location.name for location in automaton.locations if location in sources)
+            if len(names) == len(automaton.locations):
+                return None
+            out.append((self.automaton_field[automaton], names))
+        return tuple(out) or None
 
     # -- communications and data ---------------------------------------------------------
     def communication(self, component: m.Component, c: m.Communication) -> Communication:

@@ -313,10 +313,10 @@ class Simulator:
         """An uncontrollable event with its data (raw data goes through the enum rules)."""
         self.step += 1
         before = len(self.events)
+        self.supervisor.last_ignored = ""
         if not self.supervisor.deliver(name, value, raw):
-            return self._counted(
-                self._checked(Outcome((), (f"ignored: {name} cannot happen now (the plant does not expect it)",)))
-            )
+            why = self.supervisor.last_ignored or "cannot happen now (the plant does not expect it)"
+            return self._counted(self._checked(Outcome((), (f"ignored: {name}: {why}",))))
         return self._since(before)
 
     def run(self, line: str) -> Outcome:

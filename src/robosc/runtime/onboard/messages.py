@@ -172,9 +172,7 @@ def _leaf_equal(kind: str, actual: Any, expected: Any) -> bool:
         if isinstance(expected, (list, tuple)) or type(expected).__name__ in ("array", "ndarray"):
             a_items, e_items = list(actual), list(expected)
             element = kind.split("[")[0] if "[" in kind else kind.replace("sequence<", "").rstrip(">")
-            return len(a_items) == len(e_items) and all(
-                _same(x, y, element) for x, y in zip(a_items, e_items)
-            )
+            return len(a_items) == len(e_items) and all(_same(x, y, element) for x, y in zip(a_items, e_items))
         return bool(actual == expected)
     except Exception:
         return False

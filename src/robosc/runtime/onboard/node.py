@@ -21,8 +21,8 @@ import sys
 import time
 from typing import Any, Callable, Dict, List, Optional, Union
 
+from .delivery import Delivery
 from .messages import Unsendable, conforms, fill, received, wire_type
-from .persist import StateFile, default_path
 from .recording import EventLog, Gated, Recorder, writable
 from .supervisor import Warnings
 from .values import finite, plain
@@ -37,6 +37,7 @@ VIEW_PAGE_TOPIC = "live_view/page"
 VIEW_EVENTS_TOPIC = "live_view/events"
 HEARTBEAT = '{"heartbeat": true}'  # on live_view/events every HEARTBEAT_SECONDS while watched
 HEARTBEAT_SECONDS = 0.5
+REPORT_PREFIX = "robosc/report/"  # + a component's name: the std_srvs/Trigger service its driver offers
 
 
 def default_name(robot_class: Any) -> str:
@@ -91,9 +92,44 @@ PARAMETERS = (
     ),
     Parameter("qos_depth", 10, "queue depth of every publisher and subscription", 1, 10000),
     Parameter("server_timeout", 5.0, "seconds to wait for a service or action server before a call fails", 0.0, 3600.0),
-    Parameter("resume", True, "persist the supervisor's state at every change and resume from it after a restart"),
-    Parameter("state_file", "", "where the state is persisted (empty: $ROS_HOME/robosc/<node>.state.json)"),
-    Parameter("state_max_age", 3600.0, "seconds after which a persisted state is too old to resume", 0.0, 1e9),
+    Parameter(
+        "trust_initial_state",
+        False,
+        "take the model's initial state as where the robots are at the start (only where they are known to "
+        "start there with the node, e.g. a simulation; never for a node that is started again)",
+    ),
+    Parameter(
+        "report_interval",
+        1.0,
+        "seconds between two requests for the state of an unconfirmed component (std_srvs/Trigger "
+        "robosc/report/<component>, offered by its driver)",
+        0.01,
+        3600.0,
+    ),
+    Parameter(
+        "ack_timeout",
+        1.0,
+        "seconds within which every subscriber must acknowledge a command (ROS 2) or stay connected (ROS 1); "
+        "else what the command changes is unconfirmed",
+        0.01,
+        3600.0,
+    ),
+    Parameter(
+        "answer_timeout",
+        10.0,
+        "seconds a component waits for an answer the model expects before it is unconfirmed and its driver "
+        "asked (0: wait for ever)",
+        0.0,
+        1e9,
+    ),
+    Parameter(
+        "clock_skew",
+        0.05,
+        "seconds a robot's clock may be behind this node's, when an answer's stamp is compared with the command "
+        "it answers",
+        0.0,
+        3600.0,
+    ),
     Parameter(
         "wait_for_listeners",
         True,
@@ -198,19 +234,22 @@ class NodeCore(object):
             warn=self.warnings,
             wait_for_data=self.params["wait_for_data"],
             data_timeout=self.params["data_timeout"],
+            confirmed=self.params["trust_initial_state"],
         )
         self.supervisor.send = self.send
-        # commands of the events performed since the last checkpoint: they go on the wire only
-        # once the state they lead to is persisted (write-ahead: a node killed in between comes
-        # back believing it sent them, never the other way round)
-        self.outbox: List[Callable[[], Any]] = []
+        self.supervisor.watching = True
+        self.supervisor.skew = self.params["clock_skew"]
+        self.delivery = Delivery(self)
         self.reported: Optional[Dict[str, Any]] = None  # the health last published
-        self.state_file: Optional[StateFile] = None
-        self.resumed = False
-        if self.params["resume"]:
-            path = self.params["state_file"] or default_path(full_name or default_name(robot_class))
-            self.state_file = StateFile(path, robot_class.ROBOT, robot_class.PLAN, self.params["state_max_age"])
-            self.resume()
+        self.report_clients: Dict[str, Any] = {}  # component -> the adapter's client of its report service
+        self.asked: Dict[str, float] = {}  # component -> when its driver was last asked for its state
+        self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
+        if self.supervisor.unconfirmed:
+            log(
+                "warning",
+                "holding what depends on %s until the robots confirm where they are (a report on %s<component>, "
+                "or an event that tells)" % (", ".join(sorted(self.supervisor.unsure())), REPORT_PREFIX),
+            )
         self.sinks: List[Callable[[Dict[str, Any]], Any]] = []
         self.event_log: Optional[EventLog] = None
         path = self.params["event_log"]
@@ -227,45 +266,13 @@ class NodeCore(object):
         self.text_type: Any = None
         self._plan_routes(robot_class)
 
-    # ---- restarts ------------------------------------------------------------------------------
-    def resume(self) -> None:
-        """Take back the persisted state, if there is one to take; a call or goal that was
-        waiting for its answer when the node stopped is lost with it: its error event."""
-        assert self.state_file is not None
-        path = self.state_file.path
-        fields, why = self.state_file.load()
-        if fields is not None:
-            try:
-                self.supervisor.restore(fields)
-            except ValueError as error:
-                fields, why = None, "corrupt (%s)" % (error,)
-        if fields is None:
-            if why is not None:
-                self.log("error", "state file %s refused: %s; starting from the initial state" % (path, why))
-            self.supervisor.reset()
-            return
-        self.resumed = True
-        self.log("info", "resumed from %s (saved %.1f s ago)" % (path, self.state_file.age))
-        for failed in self.supervisor.calls_in_flight():
-            self.log("warning", "%s: the call was waiting for its answer when the node stopped; taken as failed" % failed)
-            self.supervisor.deliver(failed)
-
+    # ---- after each callback and cycle -------------------------------------------------------
     def checkpoint(self) -> None:
-        """After each callback and cycle: persist the state if it changed, then put the commands
-        of the events performed meanwhile on the wire, and report on ``health`` (latched) when
+        """After each callback and cycle: follow the commands sent meanwhile (what each changed
+        stays unconfirmed until it is acknowledged), and report on ``health`` (latched) when
         what the node holds changed."""
-        if self.state_file is not None:
-            try:
-                self.state_file.save(self.supervisor.persistent())
-            except Exception as error:  # a full disk must not stop the node; said, and tried again
-                self.warnings("state not persisted: %s: %s" % (type(error).__name__, error), "persist")
-        outbox, self.outbox = self.outbox, []
-        for put in outbox:
-            try:
-                put()
-            except Exception as error:
-                self.warnings("not sent: %s: %s" % (type(error).__name__, error), "put")
-        health = self.supervisor.health()
+        self.delivery.follow()
+        health = self.health()
         if health != self.reported:
             before = self.reported
             self.reported = health
@@ -274,9 +281,75 @@ class NodeCore(object):
             elif before is not None and before["held"] and not health["held"]:
                 self.log("info", "every communication delivered data: no longer held")
             try:
-                self.publish_text(HEALTH_TOPIC, json.dumps(dict(health, resumed=self.resumed), sort_keys=True))
+                self.publish_text(HEALTH_TOPIC, json.dumps(health, sort_keys=True, default=str))
             except Exception as error:
                 self.warnings("cannot report health: %s" % (error,), "health report")
+
+    def health(self) -> Dict[str, Any]:
+        """The supervisor's health, without the commands waiting for their acknowledgement (they are
+        fleeting: ``in_flight`` counts them)."""
+        health: Dict[str, Any] = self.supervisor.health()
+        waiting = self.delivery.waiting()
+        health["unconfirmed"] = dict((c, v) for c, v in health["unconfirmed"].items() if c not in waiting)
+        health["in_flight"] = len(self.delivery.pending)
+        return health
+
+    # ---- confirming where the robots are ---------------------------------------------------
+    def ask_reports(self, now: float) -> None:
+        """Ask the driver of each unconfirmed component (but those waiting for an acknowledgement)
+        for its state, every ``report_interval`` seconds."""
+        waiting = self.delivery.waiting()
+        for component in self.supervisor.unsure():
+            if component in waiting:
+                continue
+            if now - self.asked.get(component, -1e18) < self.params["report_interval"]:
+                continue
+            self.asked[component] = now
+            client = self.report_clients.get(component)
+            if client is not None:
+                try:
+                    self.ask_report(component, client)
+                except Exception as error:
+                    self.warnings("cannot ask %s for its state: %s" % (component, error), "ask " + component)
+
+    def report(self, component: str, success: bool, message: str) -> None:
+        """A driver's answer to a report request (``success`` False: it could not tell)."""
+        if component not in self.supervisor.unsure():
+            return
+        if not success:
+            self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
+            return
+        why = self.supervisor.confirm(component, message)
+        if why is None:
+            self.log("info", "%s confirmed by its driver: %s" % (component, message))
+        else:
+            self.warnings("report of %s refused: %s" % (component, why), "report " + component)
+        self.checkpoint()
+
+    def overdue(self, now: float) -> None:
+        """Components that waited longer than ``answer_timeout`` for an answer the model expects:
+        unconfirmed (the answer may have come and been lost), and their drivers asked."""
+        limit = self.params["answer_timeout"]
+        if limit <= 0:
+            return
+        supervisor = self.supervisor
+        for attribute, since in list(supervisor.commanded.items()):
+            if now - since < limit or attribute in supervisor.unconfirmed:
+                continue
+            awaited = supervisor.awaited(attribute)
+            del supervisor.commanded[attribute]  # said once: its driver's report tells from now on
+            if not awaited:
+                continue
+            component = supervisor.COMPONENT_OF.get(attribute, attribute)
+            supervisor.unconfirm(
+                supervisor.after_answers(attribute),
+                "no answer (%s) for %.1f s" % (", ".join(awaited), now - since),
+            )
+            self.log(
+                "warning",
+                "%s: no answer (%s) for %.1f s; unconfirmed, its driver is asked"
+                % (component, ", ".join(awaited), now - since),
+            )
 
     def _plan_routes(self, robot_class: Any) -> None:
         by_comm: Dict[str, Dict[str, Any]] = {}
@@ -397,8 +470,14 @@ class NodeCore(object):
 
     # ---- the cycle -----------------------------------------------------------------------
     def cycle(self) -> None:
-        """The timer: a controller's tick, then the state if asked for."""
+        """The timer: what is overdue, the reports to ask for, a controller's tick, then the state
+        if asked for."""
         self.cycles += 1
+        now = time.time()
+        self.delivery.follow()
+        self.overdue(now)
+        if self.supervisor.unconfirmed:
+            self.ask_reports(now)
         if self.mode == "controller":
             try:
                 self.supervisor.tick()
@@ -439,13 +518,26 @@ class NodeCore(object):
         self.publish_text(STATE_TOPIC, json.dumps(state, sort_keys=True))
 
     # ---- data from the robot ---------------------------------------------------------------
-    def receive(self, topic: Topic, message: Any) -> None:
+    def receive(self, topic: Topic, message: Any, stamp: Optional[float] = None) -> None:
         """A message on a topic the robot publishes: each event on it, then what follows; a
-        supervision layer passes it on to the controller."""
+        supervision layer passes it on to the controller. ``stamp``: when the robot sent it (its
+        wall clock, seconds), where the middleware or the message tells: a message stamped no later
+        than the last one taken from the topic is a duplicate (DDS history given again), ignored."""
         try:
+            if stamp is not None:
+                last = self.stamps.get(topic.name)
+                if last is not None and stamp <= last:
+                    self.supervisor.ignored[topic.name] = self.supervisor.ignored.get(topic.name, 0) + 1
+                    self.warnings(
+                        "ignored a message on %s: stamped %.3f s before the last one taken (a duplicate)"
+                        % (topic.name, last - stamp),
+                        "duplicate " + topic.name,
+                    )
+                    return
+                self.stamps[topic.name] = stamp
             for event in topic.events:
                 comm = self.supervisor.COMMUNICATION[event.communication]
-                self.supervisor.deliver(event.name, received(comm, message))
+                self.supervisor.deliver(event.name, received(comm, message), stamp=stamp)
             self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
@@ -486,14 +578,15 @@ class NodeCore(object):
                 except Unsendable as error:
                     self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
                     return False
-            self.outbox.append(lambda: self.publish(topic, message))
+            self.delivery.sent(name, topic)
+            self.publish(topic, message)
             return True
         call = place
         event = self.supervisor.EVENT[name]
         if self.mode == "supervisor":
             return self.forward_call(call, event, data)
         if event.kind == "cancel":
-            self.outbox.append(lambda: self.cancel_goal(call))
+            self.cancel_goal(call)
             return True
         try:
             request = fill(call.request(), data, call.name)
@@ -501,9 +594,9 @@ class NodeCore(object):
             self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
             return False
         if call.kind == "service":
-            self.outbox.append(lambda: self.call_service(call, request))
+            self.call_service(call, request)
         else:
-            self.outbox.append(lambda: self.start_goal(call, request))
+            self.start_goal(call, request)
         return True
 
     def forward_call(self, call: Call, event: Any, data: Any) -> bool:
@@ -595,6 +688,15 @@ class NodeCore(object):
         return self.subscribers(publisher) if publisher is not None else 0
 
     # ---- implemented by the adapters -------------------------------------------------------
+    acknowledges = False  # whether the middleware tells when a subscriber received a command
+
+    def acknowledged(self, topic: Topic) -> bool:
+        """Whether every subscriber of ``topic`` acknowledged all it was sent (where ``acknowledges``)."""
+        return True
+
+    def ask_report(self, component: str, client: Any) -> None:
+        """Ask the driver of ``component`` (through ``client``) for its state; its answer comes back
+        through :meth:`report`."""
 
     def subscribers(self, publisher: Any) -> int:
         """How many subscribers ``publisher`` (one the adapter made) has now."""

@@ -27,6 +27,7 @@ from .node import (
     BLOCKED_TOPIC,
     HEALTH_TOPIC,
     PARAMETERS,
+    REPORT_PREFIX,
     STATE_TOPIC,
     VIEW_EVENTS_TOPIC,
     VIEW_PAGE_TOPIC,
@@ -92,9 +93,12 @@ class SupervisorNode(NodeCore):
             call.client = rospy.ServiceProxy(call.name, call.type)
         for call in self.action_calls:
             call.client = actionlib.SimpleActionClient(call.name, call.type)
+        self.trigger = load("std_srvs", "srv", "Trigger")
+        for component in self.supervisor.COMPONENTS:
+            self.report_clients[component] = rospy.ServiceProxy(REPORT_PREFIX + component, self.trigger)
         # subscriptions and servers last: their callbacks need everything above
         for topic in self.inputs.values():
-            rospy.Subscriber(topic.name, topic.type, self.locked(self.receive, topic), queue_size=depth)
+            rospy.Subscriber(topic.name, topic.type, self.locked(self.stamped, topic), queue_size=depth)
         if supervising:
             for topic in self.outputs.values():
                 rospy.Subscriber(
@@ -123,6 +127,34 @@ class SupervisorNode(NodeCore):
 
     def cycle(self, _event: Any = None) -> None:
         NodeCore.cycle(self)
+
+    def stamped(self, topic: Any, message: Any) -> None:
+        """A message from the robot, with its header's stamp when it has one (ROS 1 gives no
+        other: a message without a header cannot be told from a duplicate)."""
+        stamp = None
+        header = getattr(message, "header", None)
+        if header is not None and getattr(header, "stamp", None) is not None:
+            seconds = header.stamp.to_sec()
+            stamp = seconds if seconds > 0 else None
+        self.receive(topic, message, stamp)
+
+    # ---- asking a driver where its component is ------------------------------------------------
+    def ask_report(self, component: str, client: Any) -> None:
+        """Call the driver's report service on a thread (rospy calls are synchronous); the answer
+        comes back under the lock."""
+
+        def ask() -> None:
+            try:
+                client.wait_for_service(timeout=min(self.params["report_interval"], 5.0))
+                response = client()
+            except Exception:  # no driver offers it (yet), or it failed: asked again later
+                return
+            with self.lock:
+                self.report(component, bool(response.success), str(response.message))
+
+        thread = threading.Thread(target=ask)
+        thread.daemon = True
+        thread.start()
 
     # ---- services and actions of a controller --------------------------------------------------------
     def subscribers(self, publisher: Any) -> int:

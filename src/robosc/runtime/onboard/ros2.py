@@ -29,6 +29,7 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.action.client import ActionClient
 from rclpy.action.server import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
@@ -40,6 +41,7 @@ from .node import (
     BLOCKED_TOPIC,
     HEALTH_TOPIC,
     PARAMETERS,
+    REPORT_PREFIX,
     STATE_TOPIC,
     VIEW_EVENTS_TOPIC,
     VIEW_PAGE_TOPIC,
@@ -56,6 +58,9 @@ POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
 
 class SupervisorNode(Node, NodeCore):
     """The node of a robot's supervisor (``mode`` controller or supervisor)."""
+
+    acknowledges = True  # reliable DDS: every subscriber acknowledges what it received
+    NOW = Duration(seconds=0)
 
     def __init__(
         self, robot_class: Any, mode: str = "controller", node_name: Optional[str] = None, **kwargs: Any
@@ -129,9 +134,11 @@ class SupervisorNode(Node, NodeCore):
             if supervising:
                 topic.forward = self.create_publisher(topic.type, controller_side(topic.name), reliable)
             qos = best_effort if topic.package == SENSOR_PACKAGE else reliable
-            self.create_subscription(
-                topic.type, topic.name, self.callback(self.receive, topic), qos, qos_overriding_options=overrides
-            )
+            self.create_subscription(topic.type, topic.name, self.stamped(topic), qos, qos_overriding_options=overrides)
+        trigger = load("std_srvs", "srv", "Trigger")
+        self.trigger_request = trigger.Request
+        for component in self.supervisor.COMPONENTS:
+            self.report_clients[component] = self.create_client(trigger, REPORT_PREFIX + component)
         forwarding = ReentrantCallbackGroup()
         for call in self.service_calls:
             call.client = self.create_client(call.type, call.name)
@@ -167,6 +174,41 @@ class SupervisorNode(Node, NodeCore):
                 return None
 
         return run
+
+    def stamped(self, topic: Any) -> Any:
+        """The subscription callback of ``topic``: two parameters, so that rclpy passes the message
+        with its info, which tells when its publisher sent it (DDS's source timestamp)."""
+        receive = self.callback(self.receive, topic)
+
+        def take(message: Any, info: Any) -> None:
+            stamp = None
+            try:
+                nanoseconds = int(info["source_timestamp"])
+                stamp = nanoseconds / 1e9 if nanoseconds > 0 else None
+            except Exception:
+                pass
+            receive(message, stamp)
+
+        return take
+
+    def acknowledged(self, topic: Any) -> bool:
+        """Whether every subscriber of a command topic acknowledged all it was sent."""
+        return bool(topic.publisher.wait_for_all_acked(self.NOW))
+
+    def ask_report(self, component: str, client: Any) -> None:
+        if not client.service_is_ready():
+            return
+        future = client.call_async(self.trigger_request())
+        future.add_done_callback(self.callback(self.reported_by, component))
+
+    def reported_by(self, component: str, future: Any) -> None:
+        try:
+            response = future.result()
+        except Exception as error:
+            self.warnings("%s could not report: %s" % (component, error), "report " + component)
+            return
+        if response is not None:
+            self.report(component, bool(response.success), str(response.message))
 
     # ---- the cycle and data ---------------------------------------------------------------------
     def cycle(self) -> None:

@@ -30,8 +30,18 @@ believes in, so that belief is kept honest):
   is counted and reported. When a communication has delivered nothing readable for
   ``data_timeout`` seconds since its first unreadable message, every controllable event
   that reads it is held until readable data comes.
-* **Resume.** :meth:`Supervisor.restore` takes back a persisted state (see
-  ``persist.py``), each value checked against its field's domain.
+* **Unconfirmed is unknown.** A supervisor made with ``confirmed=False`` (what a node does
+  at every start: nothing is taken from a file) does not know where the components are:
+  their locations and variables are unconfirmed until the robots tell (an event whose
+  effect is the same wherever the component is, a report :meth:`Supervisor.confirm`
+  takes, fresh data). A controllable event is performed only where it is allowed in every
+  state the robots may be in, and only when it sends the same data in each (see
+  ``belief.py``); :meth:`Supervisor.unconfirm` makes a part unknown again (a command whose
+  delivery is uncertain, an answer that did not come).
+* **An answer the model cannot take now is not an event.** An uncontrollable event that a
+  component answers in some locations (``ANSWERS``), arriving where none of them is, is
+  ignored, counted and reported (the model's responsiveness self-loop would take it and
+  change nothing); so is one stamped before the command it would answer (a late duplicate).
 """
 
 from __future__ import absolute_import, annotations, print_function
@@ -45,6 +55,7 @@ import threading
 import time
 from typing import Any, Callable, ClassVar, Dict, FrozenSet, Optional, Tuple
 
+from .belief import TooMany, Unknown, completions, distinct, enumerable
 from .values import Data, finite, plain
 
 isfinite = math.isfinite  # for the generated data checks
@@ -270,11 +281,14 @@ class Supervisor(object):
     their own (rospy), hold ``lock`` around every call, as the ROS 1 adapter does."""
 
     ROBOT: ClassVar[str] = ""
-    PLAN: ClassVar[str] = ""  # a hash of the generated module: which supervisor a persisted state belongs to
+    PLAN: ClassVar[str] = ""  # a hash of the generated module: which supervisor this is
     # (attribute, label, group, start value, domain); group: automata, communications, data, variables
     FIELDS: ClassVar[Tuple[Tuple[Any, ...], ...]] = ()
     EVENTS: ClassVar[Tuple[Event, ...]] = ()  # in the network's order
     COMMUNICATIONS: ClassVar[Tuple[Communication, ...]] = ()
+    # uncontrollable event -> ((component location field, the locations where the model answers it), ...):
+    # only events some component answers in some locations but not in all
+    ANSWERS: ClassVar[Dict[str, Tuple[Tuple[str, Tuple[str, ...]], ...]]] = {}
     # indexes of the tables above, made by prepare()
     EVENT: ClassVar[Dict[str, Event]]
     CONTROLLABLE: ClassVar[Tuple[str, ...]]
@@ -286,6 +300,9 @@ class Supervisor(object):
     LABELS: ClassVar[Dict[str, str]]
     ATTRIBUTES: ClassVar[Tuple[str, ...]]
     WAITED: ClassVar[FrozenSet[str]]  # the communications whose data some controllable event reads
+    COMPONENT_OF: ClassVar[Dict[str, str]]  # a component's field (location, variable) -> the component
+    COMPONENTS: ClassVar[Dict[str, Tuple[str, ...]]]  # component -> its fields
+    CANDIDATES: ClassVar[Dict[str, Optional[Tuple[Any, ...]]]]  # field -> the values to try (None: too many)
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Supervisor, cls).__init_subclass__(**kwargs)
@@ -304,6 +321,15 @@ class Supervisor(object):
         cls.LABELS = dict((f[0], f[1]) for f in cls.FIELDS)
         cls.ATTRIBUTES = tuple(f[0] for f in cls.FIELDS)
         cls.WAITED = frozenset(c for e in cls.EVENTS for c in e.reads)
+        cls.COMPONENT_OF = {}
+        cls.COMPONENTS = {}
+        cls.CANDIDATES = {}
+        for attribute, label, group, _start, domain in cls.FIELDS:
+            cls.CANDIDATES[attribute] = enumerable(domain)
+            if group in ("automata", "variables"):
+                component = label.split(".")[0]
+                cls.COMPONENT_OF[attribute] = component
+                cls.COMPONENTS[component] = (*cls.COMPONENTS.get(component, ()), attribute)
 
     def __init__(
         self,
@@ -313,6 +339,7 @@ class Supervisor(object):
         wait_for_data: bool = True,
         data_timeout: float = DATA_TIMEOUT,
         clock: Callable[[], float] = time.monotonic,
+        confirmed: bool = True,
     ) -> None:
         self.lock = threading.RLock()
         self._random = random.Random(seed).random
@@ -322,12 +349,32 @@ class Supervisor(object):
         self.data_timeout = data_timeout
         self.clock = clock
         self.unreadable: Dict[str, int] = {}  # communication -> how many of its messages could not be read
-        self.reset()
+        self.ignored: Dict[str, int] = {}  # uncontrollable event -> how many times it came and was not taken
+        self.last_ignored = ""  # why the last one was not taken
+        # while watching (a node sets it), per field: when (this wall clock) a command last changed it,
+        # until an answer changes it (it waits for one); and the stamp (the robot's clock) of the last
+        # answer that changed it; for telling a late answer from a new one and one that does not come
+        self.watching = False
+        self.commanded: Dict[str, float] = {}
+        self.heard: Dict[str, float] = {}
+        self.skew = 0.0  # seconds a robot's clock may be behind this one
+        self.reset(confirmed)
 
-    def reset(self) -> None:
-        """Back to the initial state, waiting for data again (unless that is waived)."""
+    def reset(self, confirmed: bool = True) -> None:
+        """Back to the initial state, waiting for data again (unless that is waived); with
+        ``confirmed`` False, where every component is (its location and variables) is
+        unconfirmed: the robots have not said yet."""
         for attribute, _label, _group, start, _domain in self.FIELDS:
             setattr(self, attribute, copy.deepcopy(start))
+        # unconfirmed field -> the values it may have (None: any); why, per component
+        self.unconfirmed: Dict[str, Optional[Tuple[Any, ...]]] = {}
+        self.why: Dict[str, str] = {}
+        self.versions: Dict[str, int] = {}  # field -> how many times its candidates changed
+        if not confirmed:
+            self.unconfirm(
+                dict((attribute, self.CANDIDATES[attribute]) for attribute in self.COMPONENT_OF),
+                "not confirmed since the start",
+            )
         self._dirty = True  # the state changed since the allowed events were last computed
         self._enabled: Tuple[Callable[..., Optional[str]], ...] = ()
         self._sent: Dict[str, Any] = {}  # data computed since then, per event
@@ -349,6 +396,8 @@ class Supervisor(object):
         reads = self.EVENT[name].reads & self.stale if name in self.EVENT else frozenset()
         if reads:
             return "held: no readable data on %s for %.1f s" % (", ".join(sorted(reads)), self.data_timeout)
+        if self.unconfirmed:
+            return "held: it may not be allowed where %s may be (unconfirmed)" % ", ".join(self.unsure())
         return None
 
     def _watch(self) -> None:
@@ -361,22 +410,188 @@ class Supervisor(object):
             self.stale = stale
             self._dirty = True
 
-    def _filter(
-        self, enabled: Tuple[Callable[..., Optional[str]], ...]
-    ) -> Tuple[Callable[..., Optional[str]], ...]:
+    def _filter(self, enabled: Tuple[Callable[..., Optional[str]], ...]) -> Tuple[Callable[..., Optional[str]], ...]:
         stale = self.stale
         by_method = self.BY_METHOD
         return tuple(p for p in enabled if not (by_method[p.__name__].reads & stale))
 
     def health(self) -> Dict[str, Any]:
         """What keeps the supervisor from acting, as JSON-ready data: the communications it waits
-        for, those held for unreadable data, and the unreadable messages counted per communication."""
+        for, those held for unreadable data, the unreadable messages counted per communication,
+        the components whose state is unconfirmed (with the values they may have, and why) and
+        the events that came and were not taken (ignored), counted."""
         return {
             "held": bool(self.waiting),
             "waiting_for": sorted(self.waiting),
             "stale": sorted(self.stale),
             "unreadable": dict(self.unreadable),
+            "unconfirmed": self.unsure(),
+            "ignored": dict(self.ignored),
         }
+
+    # ---- what is known -------------------------------------------------------------------
+    def unsure(self) -> Dict[str, Dict[str, Any]]:
+        """The unconfirmed components: {component: {"why": ..., "may_be": {field label: [values]
+        or "any"}}}."""
+        out: Dict[str, Dict[str, Any]] = {}
+        for attribute, values in self.unconfirmed.items():
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            entry = out.setdefault(component, {"why": self.why.get(component, "unconfirmed"), "may_be": {}})
+            entry["may_be"][self.LABELS[attribute]] = "any" if values is None else [plain(v) for v in values]
+        return out
+
+    def unconfirm(self, fields: Dict[str, Optional[Tuple[Any, ...]]], why: str) -> None:
+        """The ``fields`` (attribute -> the values each may have, None: any) are not known any
+        more, for the reason ``why`` (said per component). A field with one value is known."""
+        for attribute, values in fields.items():
+            if values is not None:
+                values = distinct(list(values))
+            if values is not None and len(values) == 1:
+                self.know(attribute, values[0])
+                continue
+            if attribute not in self.unconfirmed or self.unconfirmed[attribute] != values:
+                self.versions[attribute] = self.versions.get(attribute, 0) + 1
+            self.unconfirmed[attribute] = values
+            setattr(self, attribute, Unknown(attribute))
+            self.why[self.COMPONENT_OF.get(attribute, self.LABELS[attribute])] = why
+        self._dirty = True
+
+    def know(self, attribute: str, value: Any) -> None:
+        """The field ``attribute`` is confirmed to hold ``value``."""
+        if attribute in self.unconfirmed:
+            del self.unconfirmed[attribute]
+            self.versions[attribute] = self.versions.get(attribute, 0) + 1
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            if not any(self.COMPONENT_OF.get(a, self.LABELS[a]) == component for a in self.unconfirmed):
+                self.why.pop(component, None)
+        setattr(self, attribute, value)
+        self._dirty = True
+
+    def confirm(self, component: str, report: Any) -> Optional[str]:
+        """A report of where ``component`` is, from its driver: a location name, or an object
+        with ``state`` (the location) and values of its variables by name. Taken (None) when
+        every value is one the component may have now; else nothing changes, and why is
+        returned. Variables it does not give stay as they are."""
+        fields = self.COMPONENTS.get(component)
+        if fields is None:
+            return "no component %s" % (component,)
+        if isinstance(report, str) and report.lstrip().startswith("{"):
+            try:
+                report = json.loads(report)
+            except ValueError as error:
+                return "not a location or a JSON object (%s)" % (error,)
+        if isinstance(report, str):
+            report = {"state": report.strip()}
+        if not isinstance(report, dict):
+            return "not a location or a JSON object"
+        values: Dict[str, Any] = {}
+        by_label = dict((self.LABELS[a], a) for a in fields)
+        for key, value in report.items():
+            attribute = by_label.get(component if key == "state" else "%s.%s" % (component, key))
+            if attribute is None:
+                return "%s has no %s" % (component, "location" if key == "state" else "variable %s" % key)
+            domain = next(f[4] for f in self.FIELDS if f[0] == attribute)
+            if not _fits(domain, value):
+                return "%s: %r is outside its domain" % (key, value)
+            may = self.unconfirmed.get(attribute, ())
+            if attribute in self.unconfirmed:
+                if may is not None and not any(type(v) is type(value) and v == value for v in may):
+                    return "%s: %r is not where it may be now (%s)" % (key, value, ", ".join(map(str, may)))
+            elif not (type(getattr(self, attribute)) is type(value) and getattr(self, attribute) == value):
+                return "%s: %r, but it is known to be %r" % (key, value, getattr(self, attribute))
+            values[attribute] = value
+        for attribute, value in values.items():
+            self.know(attribute, Data.wrap(value) if isinstance(value, (dict, list)) else value)
+            if self.watching and self.awaited(attribute):
+                self.commanded[attribute] = time.time()  # as reported: waiting for its answer from now
+            else:
+                self.commanded.pop(attribute, None)
+        return None
+
+    def awaited(self, attribute: str) -> list[str]:
+        """The answers (uncontrollable events) the component whose location is ``attribute``
+        waits for where it is now (none while it is unconfirmed)."""
+        value = getattr(self, attribute)
+        if isinstance(value, Unknown):
+            return []
+        return [
+            name
+            for name, answers in self.ANSWERS.items()
+            if any(field == attribute and value in locations for field, locations in answers)
+        ]
+
+    def _answer_trial(self, method: str, attribute: str) -> Callable[[], Any]:
+        def run() -> Any:
+            getattr(self, method)(Unknown("value"))
+            return getattr(self, attribute)
+
+        return run
+
+    def after_answers(self, attribute: str) -> Dict[str, Optional[Tuple[Any, ...]]]:
+        """Where the component whose location is ``attribute`` may be when an answer it waits for
+        may have come: where it is, or where any of them leads (every field of the component
+        anywhere in its domain when an answer's effect reads its data)."""
+        values = [getattr(self, attribute)]
+        for name in self.awaited(attribute):
+            try:
+                outcomes = self._over(self._answer_trial(self.EVENT[name].method, attribute))
+            except TooMany:
+                component = self.COMPONENT_OF.get(attribute, attribute)
+                return dict((a, self.CANDIDATES[a]) for a in self.COMPONENTS.get(component, (attribute,)))
+            values.extend(value for _, value in outcomes)
+        return {attribute: distinct(values)}
+
+    def _over(self, run: Callable[[], Any]) -> list[Tuple[Dict[str, Any], Any]]:
+        """``run()`` once per completion of the unconfirmed fields it reads (``belief.completions``),
+        each from the state as it is now, which is put back afterwards; nothing is recorded
+        meanwhile. Raises ``TooMany`` when the answer cannot be had by trying."""
+        saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        mutable = [isinstance(value, (Data, list, dict)) for value in saved]
+        dirty, sent, observer = self._dirty, self._sent, self.observer
+        self.observer = None
+
+        def assign(fixed: Dict[str, Any]) -> None:
+            for attribute, value, copied in zip(self.ATTRIBUTES, saved, mutable):
+                setattr(self, attribute, copy.deepcopy(value) if copied else value)
+            for attribute, value in fixed.items():
+                setattr(self, attribute, value)
+            self._dirty = True
+            self._sent = {}
+
+        try:
+            return completions(self.unconfirmed, assign, run)
+        finally:
+            for attribute, value in zip(self.ATTRIBUTES, saved):
+                setattr(self, attribute, value)
+            self._dirty, self._sent, self.observer = dirty, sent, observer
+
+    def _settle_fields(self, states: list[list[Any]]) -> None:
+        """After an event taken in several completions: each field known where it has one value
+        in all of them, else unconfirmed with the values it has (its earlier candidates where a
+        completion left it unknown)."""
+        for index, attribute in enumerate(self.ATTRIBUTES):
+            values = [state[index] for state in states]
+            found: list[Any] = []
+            anything = False
+            for value in values:
+                if isinstance(value, Unknown):
+                    earlier = self.unconfirmed.get(attribute)
+                    if earlier is None:
+                        anything = True
+                    else:
+                        found.extend(earlier)
+                else:
+                    found.append(value)
+            if anything:
+                if self.unconfirmed.get(attribute, ()) is not None or attribute not in self.unconfirmed:
+                    self.unconfirm({attribute: None}, self.why.get(self.COMPONENT_OF.get(attribute, ""), "unconfirmed"))
+                continue
+            found_values = distinct(found)
+            if len(found_values) == 1:
+                self.know(attribute, found_values[0])
+            elif attribute not in self.unconfirmed or self.unconfirmed[attribute] != found_values:
+                component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+                self.unconfirm({attribute: found_values}, self.why.get(component, "unconfirmed"))
 
     # ---- the cycle ---------------------------------------------------------------------
     def tick(self) -> Optional[str]:
@@ -396,11 +611,23 @@ class Supervisor(object):
             self._dirty = False
         enabled = self._enabled
         n = len(enabled)
-        if n == 1:
-            return enabled[0]()
         if n == 0:
             return None
-        return enabled[int(self._random() * n)]()
+        perform = enabled[0] if n == 1 else enabled[int(self._random() * n)]
+        if self.watching:
+            return self._watched(perform, None)
+        return perform()
+
+    def _watched(self, perform: Callable[..., Optional[str]], data: Any) -> Optional[str]:
+        """``perform(data)`` noting when each field it changed changed (for late answers)."""
+        before = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        name = perform(data) if data is not None else perform()
+        if name is not None:
+            now = time.time()
+            for attribute, old in zip(self.ATTRIBUTES, before):
+                if getattr(self, attribute) is not old:
+                    self.commanded[attribute] = now
+        return name
 
     def _permitted(self) -> Tuple[Callable[..., Optional[str]], ...]:
         """The controllable events allowed now, after data events, with what is held taken out."""
@@ -414,9 +641,87 @@ class Supervisor(object):
     def _current(self) -> Tuple[Callable[..., Optional[str]], ...]:
         """The controllable events allowed in this state, with the provided data computed and
         the events reading unreadable data taken out (the caller checked ``waiting``)."""
+        if self.unconfirmed:
+            return self._current_unsure()
         self._provide()
         allowed = self._allowed()
         return self._filter(allowed) if self.stale else allowed
+
+    def _current_unsure(self) -> Tuple[Callable[..., Optional[str]], ...]:
+        """While part of the state is unconfirmed: the controllable events allowed wherever the
+        robots may be (none when that cannot be told by trying)."""
+
+        def run() -> Tuple[str, ...]:
+            self._provide()
+            allowed = self._allowed()
+            return tuple(p.__name__ for p in (self._filter(allowed) if self.stale else allowed))
+
+        try:
+            outcomes = self._over(run)
+        except TooMany as too_many:
+            self.warn(
+                "holding every command: too much is unconfirmed to tell what is allowed (%s)"
+                % self.LABELS.get(too_many.field, too_many.field),
+                "too many",
+            )
+            return ()
+        if not outcomes:
+            return ()
+        first = outcomes[0][1]
+        common = [name for name in first if all(name in names for _, names in outcomes[1:])]
+        return tuple(self._unsure_event(name) for name in common)
+
+    def _unsure_event(self, method: str) -> Callable[..., Optional[str]]:
+        def perform(data: Any = None) -> Optional[str]:
+            return self._perform_unsure(method, data)
+
+        perform.__name__ = method
+        return perform
+
+    def _perform_unsure(self, method: str, data: Any) -> Optional[str]:
+        """Perform a controllable event allowed wherever the robots may be: only when it sends the
+        same data in every completion; then each field is where the event leaves it."""
+        event = self.BY_METHOD[method]
+        send = self.__dict__.get("send")
+
+        def run() -> Tuple[Optional[str], list[Any], list[Any]]:
+            self._provide()
+            sent: list[Any] = []
+
+            def stub(name: str, data: Any) -> bool:
+                sent.append(data)
+                return True
+
+            self.send = stub  # type: ignore[method-assign]
+            try:
+                result = getattr(self, method)(data)
+            finally:
+                if send is None:
+                    del self.send
+                else:
+                    self.send = send  # type: ignore[method-assign]
+            return result, sent, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+
+        try:
+            outcomes = self._over(run)
+        except TooMany:
+            return None
+        if not outcomes or any(result is None for _, (result, _, _) in outcomes):
+            return None
+        sent = outcomes[0][1][1]
+        if any(plain(other[1][1]) != plain(sent) for other in outcomes[1:]):
+            self.warn(
+                "held: %s would send different data where the robots may be (unconfirmed)" % event.name,
+                "differs " + event.name,
+            )
+            return None
+        if sent and not self.send(event.name, sent[0]):
+            return None
+        self._settle_fields([states for _, (_, _, states) in outcomes])
+        self._dirty = True
+        if self.observer is not None:
+            self._record(event.name, True, sent[0] if sent else data)
+        return event.name
 
     def settle(self, limit: int = 100) -> list[str]:
         """Supervision layer: after a callback, perform the enabled internal events (data
@@ -428,7 +733,7 @@ class Supervisor(object):
             internal = [perform for perform in self._permitted() if perform.__name__ not in requests]
             if not internal:
                 break
-            name = internal[0]()
+            name = self._watched(internal[0], None) if self.watching else internal[0]()
             if name is not None:
                 done.append(name)
         self._dirty = True
@@ -448,7 +753,8 @@ class Supervisor(object):
             return False
         for perform in self._permitted():
             if perform.__name__ == event.method:
-                return perform(data) is not None
+                done = self._watched(perform, data) if self.watching else perform(data)
+                return done is not None
         return False
 
     def template(self, name: str) -> Any:
@@ -458,14 +764,23 @@ class Supervisor(object):
         signature = self.EVENT[name].signature
         if signature is None:
             return None
-        self._provide()
         field, templates = signature
+        if self.unconfirmed:
+            try:
+                outcomes = self._over(lambda: self._provide() or getattr(self, field))  # type: ignore[func-returns-value]
+            except TooMany:
+                return None
+            locations = distinct([location for _, location in outcomes])
+            return templates.get(locations[0]) if len(locations) == 1 else None
+        self._provide()
         return templates.get(getattr(self, field))
 
-    def deliver(self, name: str, value: Any = None, raw: bool = True) -> bool:
+    def deliver(self, name: str, value: Any = None, raw: bool = True, stamp: Optional[float] = None) -> bool:
         """Deliver the uncontrollable event ``name`` with its data; False (and nothing changes)
-        when the plant cannot take it now or its data cannot be read. With ``raw`` False, the
-        data of an enum-typed event is already the enum value's name."""
+        when the plant cannot take it now, no component answers it where it is, it is stamped
+        (``stamp``, seconds on the robot's wall clock) before the command it would answer, or
+        its data cannot be read. With ``raw`` False, the data of an enum-typed event is already
+        the enum value's name."""
         event = self.EVENT.get(name)
         if event is None or event.controllable:
             raise KeyError("no uncontrollable event %r" % (name,))
@@ -474,9 +789,15 @@ class Supervisor(object):
                 value = self.convert(event.convert, value)
             except Unreadable as error:
                 return self._unreadable(event, error)
+        if self.unconfirmed:
+            return self._deliver_unsure(event, value, stamp)
         if not self._expected()[self.EXPECTED_AT[name]]:
-            self.warn("ignored %s: not expected now" % (name,), "unexpected " + name)
-            return False
+            return self._ignore(name, "not expected now")
+        answers = self.ANSWERS.get(name)
+        if answers is not None:
+            why = self._unanswered(answers, stamp)
+            if why is not None:
+                return self._ignore(name, why)
         saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
         try:
             getattr(self, event.method)(value)
@@ -484,12 +805,88 @@ class Supervisor(object):
             for attribute, before in zip(self.ATTRIBUTES, saved):
                 setattr(self, attribute, before)
             return self._unreadable(event, error)
+        self._delivered(event, value, saved, stamp)
+        return True
+
+    def _unanswered(self, answers: Tuple[Tuple[str, Tuple[str, ...]], ...], stamp: Optional[float]) -> Optional[str]:
+        """Why no component takes an answer now (None: one does): none is where it answers it,
+        or it is stamped before every command that put one there."""
+        waiting = [field for field, locations in answers if getattr(self, field) in locations]
+        if not waiting:
+            return "%s does not expect it where it is (%s)" % (
+                " or ".join(self.LABELS[f] for f, _ in answers),
+                ", ".join(str(getattr(self, f)) for f, _ in answers),
+            )
+        if stamp is not None and all(self._before(stamp, f) for f in waiting):
+            return "stamped before the command it would answer, or an answer taken since (a late duplicate)"
+        return None
+
+    def _before(self, stamp: float, field: str) -> bool:
+        """Whether an answer stamped ``stamp`` was sent before the command that put ``field`` where it
+        is, or before the last answer that changed it."""
+        commanded = self.commanded.get(field)
+        heard = self.heard.get(field)
+        return (commanded is not None and stamp + self.skew < commanded) or (heard is not None and stamp < heard)
+
+    def _delivered(self, event: Event, value: Any, saved: list[Any], stamp: Optional[float]) -> None:
         self._dirty = True
+        if self.watching:
+            for attribute, before in zip(self.ATTRIBUTES, saved):
+                if getattr(self, attribute) is not before:
+                    self.commanded.pop(attribute, None)
+                    if stamp is not None:
+                        self.heard[attribute] = max(stamp, self.heard.get(attribute, stamp))
         communication = event.communication
         if communication is not None and (self.waiting or self._unreadable_since):
             self._readable(communication)
         if self.observer is not None:
-            self._record(name, False, value)
+            self._record(event.name, False, value)
+
+    def _ignore(self, name: str, why: str) -> bool:
+        self.ignored[name] = self.ignored.get(name, 0) + 1
+        self.last_ignored = why
+        self.warn("ignored %s: %s" % (name, why), "ignored " + name)
+        return False
+
+    def _deliver_unsure(self, event: Event, value: Any, stamp: Optional[float]) -> bool:
+        """An uncontrollable event while part of the state is unconfirmed: taken in each
+        completion where it can be, ignored (nothing changes) in the others, which therefore
+        stay possible: an answer may be spurious or a duplicate, so it tells where a component
+        is only where every place it may be leads to the same one."""
+        answers = self.ANSWERS.get(event.name)
+
+        def run() -> Any:
+            why: Optional[str] = None
+            if not self._expected()[self.EXPECTED_AT[event.name]]:
+                why = "not expected now"
+            elif answers is not None:
+                why = self._unanswered(answers, stamp)
+            state = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+            if why is not None:
+                return why, state
+            try:
+                getattr(self, event.method)(value)
+            except Unreadable as error:
+                return error
+            return None, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+
+        saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        try:
+            outcomes = self._over(run)
+        except TooMany as too_many:  # it reads what cannot be tried: anything it may change is unknown
+            self.unconfirm(
+                dict((a, self.CANDIDATES[a]) for a in self.COMPONENT_OF),
+                "%s came while too much was unconfirmed to follow it (%s)"
+                % (event.name, self.LABELS.get(too_many.field, too_many.field)),
+            )
+            return self._ignore(event.name, "too much is unconfirmed to tell what it changes")
+        unreadable = [result for _, result in outcomes if isinstance(result, Unreadable)]
+        if unreadable:
+            return self._unreadable(event, unreadable[0])
+        if all(why is not None for _, (why, _) in outcomes):
+            return self._ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
+        self._settle_fields([state for _, (_, state) in outcomes])
+        self._delivered(event, value, saved, stamp)
         return True
 
     def _readable(self, communication: str) -> None:
@@ -527,35 +924,6 @@ class Supervisor(object):
         except Exception as error:
             raise Unreadable("%s: %s: %s" % (enum, type(error).__name__, error)) from None
 
-    # ---- persisted state -----------------------------------------------------------------
-    def persistent(self) -> Dict[str, Any]:
-        """The whole state by attribute, as JSON-ready data: what :meth:`restore` takes back."""
-        return dict((attribute, plain(getattr(self, attribute))) for attribute in self.ATTRIBUTES)
-
-    def restore(self, fields: Dict[str, Any]) -> None:
-        """Take back a state made by :meth:`persistent` (of this very supervisor: the caller
-        checks ``PLAN``). Every value is checked against its field's domain first; ValueError
-        (and nothing changes) when one is missing or outside it."""
-        if not isinstance(fields, dict):
-            raise ValueError("the state is not an object")
-        values = []
-        for attribute, label, _group, _start, domain in self.FIELDS:
-            if attribute not in fields:
-                raise ValueError("no value for %s" % (label,))
-            value = fields[attribute]
-            if not _fits(domain, value):
-                raise ValueError("%s: %r is outside its domain" % (label, value))
-            values.append(Data.wrap(value) if isinstance(value, (dict, list)) else value)
-        for attribute, value in zip(self.ATTRIBUTES, values):
-            setattr(self, attribute, value)
-        self._dirty = True
-        self._sent = {}
-
-    def calls_in_flight(self) -> list[str]:
-        """The error events of services and actions that are waiting for an answer now."""
-        expected = set(self.expected())
-        return [e.name for e in self.EVENTS if e.kind == "error" and e.name in expected]
-
     # ---- output: override to put commands on the middleware ---------------------------
     def send(self, name: str, data: Any) -> bool:
         """The controllable event ``name`` is being performed with ``data`` (None: empty).
@@ -568,7 +936,10 @@ class Supervisor(object):
         out: Dict[str, Dict[str, Any]] = {"automata": {}, "communications": {}, "data": {}, "variables": {}}
         for attribute, label, group, _start, _domain in self.FIELDS:
             value = getattr(self, attribute)
-            out[group][label] = value if group != "variables" else plain(value)
+            if isinstance(value, Unknown):
+                out[group][label] = None  # unconfirmed: see health()["unconfirmed"]
+            else:
+                out[group][label] = value if group != "variables" else plain(value)
         return out
 
     def to_json(self) -> str:

@@ -1,0 +1,138 @@
+# -*- coding: utf-8 -*-
+"""Commands on their way to the robots.
+
+A command is performed when it is put on the wire, but the robot has it only once it
+arrived. Until then what the command changed in the supervisor's state is unconfirmed:
+the robot may be where it was or where the command sends it, and whatever is decided
+meanwhile must be safe for both. On ROS 2 (reliable QoS) every matched subscriber
+acknowledges a message it received: once they all did, the command is known delivered.
+A subscriber that does not acknowledge within ``ack_timeout`` (a driver that died: DDS
+keeps a dead subscriber matched until its lease ends, 20 s by default) leaves the robot
+unconfirmed, and its driver is asked where it is. ROS 1 acknowledges nothing: a command
+is taken as delivered, unless its topic loses its last subscriber within ``ack_timeout``
+(TCPROS notices a driver that died at once).
+
+Standard library only, Python 3.8 or newer (ROS Noetic).
+"""
+
+from __future__ import absolute_import, annotations
+
+import time
+from typing import Any, Dict, List, Optional, Set, Tuple
+
+from .belief import Unknown
+
+
+class Pending(object):
+    """A command whose delivery is not known yet."""
+
+    __slots__ = ("after", "deadline", "either", "event", "topic", "versions")
+
+    def __init__(
+        self,
+        event: str,
+        topic: Any,
+        deadline: float,
+        after: Dict[str, Any],
+        either: Dict[str, Optional[Tuple[Any, ...]]],
+        versions: Dict[str, int],
+    ) -> None:
+        self.event = event
+        self.topic = topic
+        self.deadline = deadline
+        self.after = after  # field -> its value once delivered (Unknown: it was unconfirmed anyway)
+        self.either = either  # field -> the values it may have while the command is on its way
+        self.versions = versions  # field -> its version once the command was sent
+
+
+class Delivery(object):
+    """The commands of one node (``NodeCore``) on their way."""
+
+    def __init__(self, node: Any) -> None:
+        self.node = node
+        self.sending: List[Tuple[str, Any, List[Any], float]] = []  # since the last follow(): event, topic, before
+        self.pending: List[Pending] = []
+
+    def sent(self, event: str, topic: Any) -> None:
+        """The node is putting ``event`` on ``topic`` (before the event's effect)."""
+        supervisor = self.node.supervisor
+        before = [getattr(supervisor, attribute) for attribute in supervisor.ATTRIBUTES]
+        self.sending.append((event, topic, before, time.monotonic()))
+
+    def waiting(self) -> Set[str]:
+        """The components that are unconfirmed only while a command to them is on its way."""
+        supervisor = self.node.supervisor
+        return set(supervisor.COMPONENT_OF.get(a, a) for p in self.pending for a in p.after)
+
+    def follow(self) -> None:
+        """What the commands sent since the last call changed becomes unconfirmed until they are
+        acknowledged; acknowledged ones are known; late ones stay unconfirmed and are reported."""
+        if self.sending:
+            sending, self.sending = self.sending, []
+            for event, topic, before, at in sending:
+                self._track(event, topic, before, at)
+        if not self.pending:
+            return
+        now = time.monotonic()
+        node = self.node
+        for pending in list(self.pending):
+            listeners = node.listeners(pending.topic)
+            if listeners == 0:
+                self._lost(pending, "no subscriber left")
+            elif node.acknowledges:
+                if node.acknowledged(pending.topic):
+                    self._delivered(pending)
+                elif now >= pending.deadline:
+                    self._lost(pending, "not acknowledged within %.1f s" % node.params["ack_timeout"])
+            elif now >= pending.deadline:  # ROS 1: it kept its subscribers through the window
+                self.pending.remove(pending)
+
+    def _track(self, event: str, topic: Any, before: List[Any], at: float) -> None:
+        supervisor = self.node.supervisor
+        changed: Dict[str, Optional[Tuple[Any, ...]]] = {}
+        after: Dict[str, Any] = {}
+        for attribute, old in zip(supervisor.ATTRIBUTES, before):
+            new = getattr(supervisor, attribute)
+            if new is old or attribute not in supervisor.COMPONENT_OF:
+                continue
+            after[attribute] = new
+            changed[attribute] = _either(supervisor, attribute, old, new)
+        if not after:
+            return
+        if self.node.acknowledges:  # ROS 2: unconfirmed until acknowledged
+            supervisor.unconfirm(changed, "%s on its way" % (event,))
+        versions = dict((attribute, supervisor.versions.get(attribute, 0)) for attribute in after)
+        self.pending.append(Pending(event, topic, at + self.node.params["ack_timeout"], after, changed, versions))
+
+    def _delivered(self, pending: Pending) -> None:
+        self.pending.remove(pending)
+        supervisor = self.node.supervisor
+        for attribute, value in pending.after.items():
+            if isinstance(value, Unknown) or supervisor.versions.get(attribute, 0) != pending.versions[attribute]:
+                continue  # unconfirmed for another reason too, or changed since: reports will tell
+            supervisor.know(attribute, value)
+
+    def _lost(self, pending: Pending, why: str) -> None:
+        """Not acknowledged in time, or its topic lost its subscribers: what it changed is
+        unconfirmed (where the robot may be, or anywhere once it changed since), said once."""
+        self.pending.remove(pending)
+        supervisor = self.node.supervisor
+        components = sorted(set(supervisor.COMPONENT_OF[a] for a in pending.after))
+        reason = "%s may not have arrived (%s)" % (pending.event, why)
+        fields = dict(
+            (a, values if supervisor.versions.get(a, 0) == pending.versions[a] else supervisor.CANDIDATES.get(a))
+            for a, values in pending.either.items()
+        )
+        supervisor.unconfirm(fields, reason)
+        for component in components:
+            supervisor.why[component] = reason
+        self.node.log("warning", "%s: %s unconfirmed, held until its driver reports" % (reason, ", ".join(components)))
+
+
+def _either(supervisor: Any, attribute: str, old: Any, new: Any) -> Optional[Tuple[Any, ...]]:
+    """The values a field may have when a command may or may not have moved it from ``old`` to
+    ``new``: either, or, where one of them is unconfirmed, every value of its domain."""
+    if isinstance(old, Unknown) or isinstance(new, Unknown):
+        values: Optional[Tuple[Any, ...]] = supervisor.CANDIDATES.get(attribute)
+        return values
+    return (old, new)
