@@ -14,6 +14,8 @@ from std_msgs.msg import Bool, Empty, Float32, Int16, String  # noqa: F401
 
 def start(name="robosc_test"):
     rospy.init_node(name, anonymous=True, disable_signals=True)
+    for namespace, states in json.loads(os.environ.get("ROBOSC_TEST_REPORTS") or "{}").items():
+        reports(states, namespace)
 
 
 class Recorder:
@@ -52,6 +54,19 @@ class State(Recorder):
         if state is None:
             return None
         return {**state["automata"], **state["variables"]}.get(name)
+
+
+def reports(states, namespace=""):
+    """Drivers that report where their components are when the node asks (std_srvs/Trigger
+    <namespace>/robosc/report/<component>): each answers what ``states`` says then."""
+    from std_srvs.srv import Trigger, TriggerResponse
+
+    def answer(component):
+        return lambda request: TriggerResponse(component in states, states.get(component, ""))
+
+    for component in list(states):
+        rospy.Service(namespace + "/robosc/report/" + component, Trigger, answer(component))
+    return states
 
 
 def wait_for(condition, timeout=10.0):

@@ -77,6 +77,26 @@ def build_package(model: str | Path, ros: int, mode: str, out: Path, live: bool 
     return target
 
 
+def initial_states(model: str | Path) -> dict[str, str]:
+    """Where each component of ``model`` starts (its initial location, and its variables' initial
+    values as JSON where it has any): what stand-in drivers started with the node report when it
+    asks."""
+    from robosc.runtime.simulator import load_module
+
+    robot = load_module(plan_supervisor(synthesize_model(load_model(ROOT / model)))).Robot
+    reports: dict[str, dict[str, object]] = {}
+    for _, label, group, start, _ in robot.FIELDS:
+        if group == "automata":
+            reports.setdefault(label, {})["state"] = start
+        elif group == "variables":
+            component, _, variable = label.partition(".")
+            reports.setdefault(component, {})[variable] = start
+    return dict(
+        (component, str(report["state"]) if list(report) == ["state"] else json.dumps(report))
+        for component, report in reports.items()
+    )
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -150,13 +170,13 @@ class Ros1:
         name = script.name + "".join(r.replace("/", "_").replace(":=", "") for r in remaps)
         return self.processes.start(name, [ROS1_PYTHON, str(script), *args], self.env)
 
-    def client(self, body: str, timeout: float = 60) -> Any:
+    def client(self, body: str, timeout: float = 60, reports: dict[str, dict[str, str]] | None = None) -> Any:
         """Run a client script (rospy, the helpers of ros1_client.py in scope); it prints its
-        result as JSON on the last line."""
+        result as JSON on the last line. ``reports``: {namespace: {component: report}}, what its
+        stand-in drivers report when a node asks where they are (served from its ``start()``)."""
         script = f"import sys\nsys.path.insert(0, {str(HELPERS.parent)!r})\nfrom ros1_client import *\n{body}\n"
-        done = subprocess.run(
-            [ROS1_PYTHON, "-c", script], env=self.env, capture_output=True, timeout=timeout, text=True
-        )
+        env = {**self.env, "ROBOSC_TEST_REPORTS": json.dumps(reports or {})}
+        done = subprocess.run([ROS1_PYTHON, "-c", script], env=env, capture_output=True, timeout=timeout, text=True)
         if done.returncode != 0:
             raise AssertionError(f"client failed:\n{done.stdout}\n{done.stderr}\n{self.processes.output()}")
         return json.loads(done.stdout.strip().splitlines()[-1])
@@ -268,6 +288,24 @@ class Ros2:
         got: list[Any] = []
         self.node.create_subscription(kind, topic, got.append, 50)
         return got
+
+    def reports(self, states: dict[str, str], namespace: str = "") -> dict[str, str]:
+        """Drivers that report where their components are, as a node asks them after its start
+        (std_srvs/Trigger ``<namespace>/robosc/report/<component>``): each answers what ``states``
+        says when asked (the test changes it as its stand-in robots move)."""
+        from std_srvs.srv import Trigger
+
+        def answer(component: str) -> Any:
+            def serve(request: Any, response: Any) -> Any:
+                response.success = component in states
+                response.message = states.get(component, "")
+                return response
+
+            return serve
+
+        for component in list(states):
+            self.node.create_service(Trigger, f"{namespace}/robosc/report/{component}", answer(component))
+        return states
 
     def close(self) -> None:
         self.executor.shutdown()

@@ -1,5 +1,6 @@
 """Where the proof meets the robot, on real ROS 2 (rclpy, Fast DDS) and ROS 1 (rosmaster,
-rospy): a controller killed with ``kill -9`` and started again with the same command line,
+rospy): a controller killed with ``kill -9`` and started again with the same command line
+(it holds until the robots' drivers report, issue 29),
 a supervision layer offered commands that are almost an allowed event, scans that cannot be
 read, and a start before any data. Each test fails on the behaviour of cd9e530 (issue 21),
 where a restart forgot the emergency stop, the layer forwarded a Twist with ``linear.y = 2``
@@ -71,12 +72,14 @@ def test_ros2_a_controller_killed_with_the_stop_held_does_not_move_after_its_res
 ) -> None:
     package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
     params = {"rate": 20.0, "seed": 3}
+    stop_driver = ros2.reports({"EmergencyStop": "in_service"})  # the stop node says where the stop is
     node = ros2.start(package, **params)
     robot = LineRobot(ros2)
     ros2.wait_subscribed(robot.scan, 20)
     ros2.wait_subscribed(robot.stop, 20)
     assert ros2.spin_until(lambda: robot.moves() > 0, 10), "the line follower never moved"
     robot.press_stop()  # ... and held: no continue is ever published
+    stop_driver.clear()  # a stop node that cannot report (stopped, but it does not say so when asked)
     assert ros2.spin_until(lambda: robot.cmd[-1].linear.x == 0.0, 5), "no halt after the stop"
     ros2.spin(0.5)
     node.send_signal(signal.SIGKILL)
@@ -86,14 +89,20 @@ def test_ros2_a_controller_killed_with_the_stop_held_does_not_move_after_its_res
     ros2.spin(8.0)
     assert again.poll() is None, ros2.processes.output()
     assert robot.moves() == 0, f"{robot.moves()} move commands after the restart"
-    assert robot.cmd and {m.linear.x for m in robot.cmd} == {0.0}, "the restarted node does not halt"
-    assert "resumed from" in ros2.processes.output()
+    assert robot.cmd == [], "commanded with the stop unconfirmed"
+    assert _health(robot.health)["unconfirmed"]["EmergencyStop"]["why"] == "not confirmed since the start"
+    stop_driver["EmergencyStop"] = "stopped"  # the stop node reports: the stop is held
+    assert ros2.spin_until(lambda: bool(robot.cmd), 10), "no halt once the stop was confirmed"
+    ros2.spin(1.0)
+    assert robot.moves() == 0 and {m.linear.x for m in robot.cmd} == {0.0}
+    assert "EmergencyStop confirmed by its driver: stopped" in ros2.processes.output()
 
 
 def test_ros2_unreadable_scans_are_not_values(ros2: Ros2, tmp_path: Path) -> None:
     """An obstacle, then empty and NaN scans: halt stays the only command; NaN scans for longer
     than data_timeout: nothing that reads the scan is commanded, until a readable scan."""
     package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
+    ros2.reports({"EmergencyStop": "in_service"})
     ros2.start(package, rate=20.0, seed=4, data_timeout=3.0)
     robot = LineRobot(ros2)
     ros2.wait_subscribed(robot.scan, 20)
@@ -132,15 +141,16 @@ def test_ros2_a_fresh_node_commands_nothing_before_its_data(ros2: Ros2, tmp_path
     assert _health(health)["waiting_for"] == ["scan_diag_right", "scan_front", "scan_right"]
 
 
-def test_ros2_the_maze_solver_killed_mid_turn_resumes_turning(ros2: Ros2, tmp_path: Path) -> None:
+def test_ros2_the_maze_solver_killed_mid_turn_waits_for_its_platform(ros2: Ros2, tmp_path: Path) -> None:
     from geometry_msgs.msg import Twist
-    from std_msgs.msg import Empty, Int16, String
+    from std_msgs.msg import Empty, Int16
 
     package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    platform = ros2.reports({"Platform": "ready"})
     node = ros2.start(package, rate=20.0, seed=5, publish_state=True)
     moves = ros2.record(Twist, "/cmd_vel")
     lefts = ros2.record(Int16, "/rotate_left")
-    states = ros2.record(String, "/state")
+    health = _latched(ros2, "/health")
     scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     done = ros2.node.create_publisher(Empty, "/rotate_done", 10)
     wall = [0.3] + [5.0] * 359
@@ -148,23 +158,26 @@ def test_ros2_the_maze_solver_killed_mid_turn_resumes_turning(ros2: Ros2, tmp_pa
     ros2.node.create_timer(0.1, lambda: scan.publish(laser_scan(ranges[0])))
     ros2.wait_subscribed(scan, 20)
     assert ros2.spin_until(lambda: bool(lefts), 10), "no turn at the wall"
+    platform["Platform"] = "turning"
     node.send_signal(signal.SIGKILL)  # in the middle of the turn
     node.wait(10)
     ranges[0] = [5.0] * 360  # the turn goes on while the controller is dead: the way is free
     moves.clear()
     lefts.clear()
     ros2.start(package, rate=20.0, seed=5, publish_state=True)
-    assert ros2.spin_until(lambda: bool(states) and json.loads(states[-1].data)["automata"]["Platform"] == "turning", 20)
+    assert ros2.spin_until(lambda: "Platform confirmed by its driver: turning" in ros2.processes.output(), 20)
     ros2.spin(1.0)
     assert moves == [] and lefts == [], "commanded while the robot was still turning"
     # the turn ends; said again until the restarted node, whose subscription DDS may match
     # late on a loaded machine, has heard it (a repeat while it is ready is ignored)
+    platform["Platform"] = "ready"
     end = time.monotonic() + 15
     while not moves and time.monotonic() < end:
         done.publish(Empty())
         ros2.spin_until(lambda: bool(moves), 0.5)
     assert moves, "no movement after the turn"
     assert moves[0].linear.x == 0.3
+    assert _health(health)["unconfirmed"] == {}
 
 
 def _twist(**fields: float) -> Any:
@@ -256,14 +269,15 @@ while not moves() and time.time() < end:
 stop.publish(Empty())
 feed(1.0)
 done({"moved": moves(), "last": cmd.messages()[-1].linear.x})
-"""
+""",
+        reports={"": {"EmergencyStop": "in_service"}},
     )
     assert first["moved"] > 0 and first["last"] == 0.0
     node.send_signal(signal.SIGKILL)
     node.wait(10)
     again = ros1.node(package, **params)  # the same command line, no extra parameter
     time.sleep(1.0)
-    second = ros1.client(
+    second = ros1.client(  # a stop node that does not report
         robot
         + """
 feed(8.0)
@@ -271,9 +285,17 @@ done({"moves": moves(), "commands": len(cmd.messages())})
 """
     )
     assert again.poll() is None
-    assert second["moves"] == 0, f"{second['moves']} move commands after the restart"
-    assert second["commands"] > 0, "the restarted node does not halt"
-    assert "resumed from" in ros1.processes.output()
+    assert second == {"moves": 0, "commands": 0}, "commanded with the stop unconfirmed"
+    third = ros1.client(  # one that does: the stop is held
+        robot
+        + """
+feed(3.0)
+done({"moves": moves(), "commands": len(cmd.messages())})
+""",
+        reports={"": {"EmergencyStop": "stopped"}},
+    )
+    assert third["moves"] == 0 and third["commands"] > 0, third
+    assert "EmergencyStop confirmed by its driver: stopped" in ros1.processes.output()
 
 
 def test_ros1_the_layer_forwards_only_exactly_the_allowed_event(ros1: Ros1, tmp_path: Path) -> None:

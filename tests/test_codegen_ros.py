@@ -33,6 +33,7 @@ RUNTIME = {
     "__init__.py",
     "belief.py",
     "delivery.py",
+    "fastdds.xml",
     "live_server.py",
     "messages.py",
     "node.py",

@@ -16,7 +16,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ros_support import Ros1, Ros2, unavailable
+from ros_support import Ros1, Ros2, initial_states, unavailable
 from test_build import COLCON, in_workspace, run
 
 MODEL = "examples/warehouse.rscd"
@@ -135,8 +135,9 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
         publishers[answer] = ros2.node.create_publisher(Empty, f"/depot/{answer}", 10)
     start = (
         f". {workspace}/install/setup.bash && exec {node} --ros-args -r __ns:=/depot"
-        f" -p rate:=40.0 -p seed:=3 -p event_log:={log} -p resume:=false"
+        f" -p rate:=40.0 -p seed:=3 -p event_log:={log}"
     )
+    ros2.reports(initial_states(MODEL), "/depot")  # the robots and the door say where they start
     ros2.processes.start("coordinator", ["/bin/bash", "-c", start], ros2.env)
     for publisher in publishers.values():
         ros2.wait_subscribed(publisher, 30)
@@ -208,10 +209,10 @@ def test_ros1_coordinator_built_by_catkin_commands_each_robot_in_its_namespace(r
     log = tmp_path / "events.jsonl"
     launch = (
         f". {installed}/setup.bash && exec roslaunch warehouse_robosc warehouse_robosc.launch"
-        f" namespace:=/depot rate:=40.0 seed:=3 event_log:={log} resume:=false"
+        f" namespace:=/depot rate:=40.0 seed:=3 event_log:={log}"
     )
     ros1.processes.start("roslaunch", ["/bin/bash", "-c", launch], {**ros1.env, "PATH": "/usr/bin:/bin"})
     script = ROS1_ROBOTS.format(robots=list(ROBOTS), answers=ANSWERS, trips=TRIPS)
-    received = ros1.client(script, timeout=150)
+    received = ros1.client(script, timeout=150, reports={"/depot": initial_states(MODEL)})
     ros1.processes.stop()
     check_run(log, received)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ros_support import ROOT, Ros1, build_package
+from ros_support import ROOT, Ros1, build_package, initial_states
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros1, tmp_path: Path) -> None:
@@ -50,7 +50,8 @@ assert wait_for(lambda: state.value("Platform") == "ready", 5)
 assert wait_for(lambda: len(moves.messages()) > 0, 5)
 done({"speed": speed, "turn": lefts.messages()[0].data, "alive_moves": alive_moves, "before_scan": before_scan,
       "moving_while_turning": moving_while_turning, "front": state.value("Distance.front")})
-"""
+""",
+        reports={"": initial_states("examples/maze_solver.rscd")},
     )
     assert result["before_scan"] == 0  # nothing is commanded before the first scan
     assert result["speed"] == 0.3
@@ -100,7 +101,8 @@ scan_pub.publish(scan([0.2] + [5.0] * 359))
 assert wait_for(lambda: state.value("Lidar.safety") == "unsafe")
 report["unsafe"] = speeds(0.5)
 done(report)
-"""
+""",
+        reports={"": initial_states("examples/line_follower.rscd")},
     )
     assert result["start"] == []
     assert 0.15 in result["driving"]
@@ -162,7 +164,8 @@ def test_service_and_action_against_real_servers(ros1: Ros1, tmp_path: Path) -> 
 assert wait_for(lambda: len(goals) >= 1, 20), "no goal reached the action server"
 assert wait_for(lambda: state.value("Arm.result") == 42, 10)
 done({"calls": calls, "goals": goals[:2], "light": state.value("Light"), "progress": state.value("Arm.progress")})
-"""
+""",
+        reports={"": initial_states("tests/models/calls_ros1.rscd")},
     )
     assert result["calls"][:2] == [True, True]  # the first call failed (error event), the light was tried again
     assert result["light"] == "lit"
@@ -185,7 +188,8 @@ assert wait_for(lambda: cancelled, 10), "the goal was not cancelled"
 assert wait_for(lambda: state.value("Arm") == "idle", 5)
 rospy.sleep(0.5)
 done({"goals": len(goals), "arm": state.value("Arm"), "switch": state.value("Switch")})
-"""
+""",
+        reports={"": initial_states("tests/models/calls_ros1.rscd")},
     )
     assert result["goals"] == 1  # not started again: the switch is open
     assert result["arm"] == "idle"
@@ -204,7 +208,8 @@ rospy.sleep(0.5)
 before = len(state.messages())
 rospy.sleep(1.0)
 done({"states": len(state.messages()) - before, "light": state.value("Light")})
-"""
+""",
+        reports={"": initial_states("tests/models/calls_ros1.rscd")},
     )
     assert result["states"] >= 10  # the cycle goes on at 20 Hz
     assert result["light"] == "turning_on"
@@ -229,7 +234,8 @@ failed_after = time.time() - started
 before = len(state.messages())
 rospy.sleep(1.0)
 done({"failed_after": failed_after, "states": len(state.messages()) - before})
-"""
+""",
+        reports={"": initial_states("tests/models/calls_ros1.rscd")},
     )
     assert 0.5 < result["failed_after"] < 3.0
     assert result["states"] >= 10  # the cycle goes on at 20 Hz
@@ -281,7 +287,8 @@ report["moves_into_wall"] = len(robot_moves.messages()) - moves_before
 report["left"] = robot_lefts.messages()[0].data
 report["platform"] = state.value("Platform")
 done(report)
-"""
+""",
+        reports={"": initial_states("examples/maze_solver.rscd")},
     )
     assert result["held"].startswith("held: waiting for the first readable data on")
     assert result["blocked_left"] == "turn_left"
@@ -331,7 +338,8 @@ report["goals"] = list(goals)
 assert wait_for(lambda: state.value("Arm.result") == 42, 5)
 report["arm"] = state.value("Arm")
 done(report)
-"""
+""",
+        reports={"": initial_states("tests/models/calls_ros1.rscd")},
     )
     assert result["first_goal"] == 4  # GoalStatus.ABORTED: blocked by the supervisor
     assert result["blocked"] == "work.c_trigger"
@@ -373,7 +381,8 @@ scan_pub = publisher("/scan", LaserScan)
 scan_pub.publish(scan([0.3] + [5.0] * 359))
 assert wait_for(lambda: lefts.messages(), 10), "no turn"
 done({})
-"""
+""",
+        reports={"": initial_states("examples/maze_solver.rscd")},
     )
     assert wait_until(lambda: (state() or {}).get("event") == "turn_left", 10)
     last = state()
@@ -423,7 +432,8 @@ rospy.sleep(0.3)
 forwarded = robot.messages()
 done({"events": [r["event"] for r in reports], "reasons": sorted({r["reason"] for r in reports}),
       "before_halt": before_halt, "forwarded": [[m.linear.x, m.angular.z] for m in forwarded]})
-"""
+""",
+        reports={"": initial_states("examples/line_follower.rscd")},
     )
     assert result["events"] == [None, None, None, None, "move"]
     assert result["reasons"] == [
@@ -464,7 +474,8 @@ rospy.sleep(0.5)
 platform = {r: json.loads(states[r].messages()[-1].data)["automata"]["Platform"] for r in states}
 done({"robot2_lefts": len(lefts["robot2"].messages()), "platform": platform,
       "global": len(global_moves.messages())})
-"""
+""",
+        reports={"/robot1": {"Platform": "ready"}, "/robot2": {"Platform": "ready"}},
     )
     assert result == {"robot2_lefts": 0, "platform": {"robot1": "turning", "robot2": "ready"}, "global": 0}
     assert all(n.poll() is None for n in nodes)

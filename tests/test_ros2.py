@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
-from ros_support import ROOT, Ros2, build_package, laser_scan
+from ros_support import ROOT, Ros2, build_package, initial_states, laser_scan
 
 
 def _state(states: list[Any]) -> dict[str, Any]:
@@ -28,6 +28,9 @@ def _state(states: list[Any]) -> dict[str, Any]:
     return {**data["automata"], **data["variables"]}
 
 
+def _confirmed(states: list[Any]) -> bool:
+    """Whether the node's last state says every component is confirmed (its drivers reported)."""
+    return bool(states) and json.loads(states[-1].data)["health"]["unconfirmed"] == {}
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros2, tmp_path: Path) -> None:
@@ -35,6 +38,7 @@ def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros2: Ros
     from std_msgs.msg import Empty, Int16, String
 
     package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    ros2.reports(initial_states("examples/maze_solver.rscd"))  # the drivers report where they start
     node = ros2.start(package, rate=20.0, seed=1, publish_state=True)
     moves = ros2.record(Twist, "/cmd_vel")
     lefts = ros2.record(Int16, "/rotate_left")
@@ -72,6 +76,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
     from std_msgs.msg import Empty, Float32, String
 
     package = build_package("examples/line_follower.rscd", 2, "controller", tmp_path)
+    ros2.reports(initial_states("examples/line_follower.rscd"))  # the drivers report where they start
     event_log = tmp_path / "events.jsonl"
     node = ros2.start(package, rate=20.0, seed=2, publish_state=True, event_log=str(event_log))
     cmd = ros2.record(Twist, "/cmd_vel")
@@ -176,6 +181,7 @@ def _pick_station(ros: Ros2, tmp_path: Path, seed: int) -> tuple[subprocess.Pope
     from std_msgs.msg import Empty, String
 
     package = build_package("examples/pick_and_light.rscd", 2, "controller", tmp_path)
+    ros.reports(initial_states("examples/pick_and_light.rscd"))  # the drivers report where they start
     node = ros.start(package, rate=20.0, seed=seed, publish_state=True)
     states = ros.record(String, "/state")
     seen = ros.node.create_publisher(Pose, "/camera/object", 10)
@@ -282,6 +288,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     from std_msgs.msg import Int16, String
 
     package = build_package("examples/maze_solver.rscd", 2, "supervisor", tmp_path)
+    ros2.reports(initial_states("examples/maze_solver.rscd"))  # the drivers report where they start
     node = ros2.start(package, rate=20.0, publish_state=True)
     robot_moves = ros2.record(Twist, "/cmd_vel")
     robot_lefts = ros2.record(Int16, "/rotate_left")
@@ -339,7 +346,7 @@ def test_launch_files_compile(tmp_path: Path) -> None:
         text = launches[0].read_text()
         tree = compile(text, str(launches[0]), "exec", flags=ast.PyCF_ONLY_AST)
         nodes = [c for c in ast.walk(tree) if isinstance(c, ast.Call) and getattr(c.func, "id", "") == "Node"]
-        supervisor = nodes[0]  # the robot's node is started again when it dies (it resumes its state)
+        supervisor = nodes[0]  # the robot's node is started again when it dies (the drivers confirm its state)
         respawn = {k.arg: k.value for k in supervisor.keywords}
         assert isinstance(respawn["respawn"], ast.Constant) and respawn["respawn"].value is True
         assert 'namespace=LaunchConfiguration("namespace")' in text
@@ -359,6 +366,7 @@ def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: P
     ros2.executor.add_node(ros2.node)
     robot = _Robot(ros2, long_goals=True)
     package = build_package("examples/pick_and_light.rscd", 2, "supervisor", tmp_path)
+    ros2.reports(initial_states("examples/pick_and_light.rscd"))  # the drivers report where they start
     node = ros2.start(package, rate=20.0, publish_state=True)
     states = ros2.record(String, "/state")
     blocked = ros2.record(String, "/blocked")
@@ -369,6 +377,7 @@ def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: P
     arm = ActionClient(ros2.node, Fibonacci, "/robosc/controller/arm/pick")
     ros2.wait_subscribed(seen)
     assert ros2.spin_until(lambda: light.service_is_ready() and arm.server_is_ready(), 15)
+    assert ros2.spin_until(lambda: _confirmed(states), 10)  # the drivers said where they are
 
     def wait(future: Any, seconds: float = 10) -> Any:
         assert ros2.spin_until(future.done, seconds)
@@ -421,6 +430,7 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
     package = tmp_path / "maze_view"
     generate(plan_supervisor(result), 2, "controller", package, render_page(result))
     port = free_port()
+    ros2.reports({"Platform": "ready"})
     node = ros2.start(package, rate=20.0, view_port=port)
     scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     ros2.wait_subscribed(scan)
@@ -457,6 +467,7 @@ def test_supervision_layer_fails_closed_on_a_shared_topic(ros2: Ros2, tmp_path: 
     from std_msgs.msg import Empty, Float32, String
 
     package = build_package("examples/line_follower.rscd", 2, "supervisor", tmp_path)
+    ros2.reports(initial_states("examples/line_follower.rscd"))  # the drivers report where they start
     node = ros2.start(package, rate=20.0, publish_state=True)
     robot = ros2.record(Twist, "/cmd_vel")
     blocked = ros2.record(String, "/blocked")
@@ -515,6 +526,7 @@ def test_two_robots_in_namespaces_on_one_graph(ros2: Ros2, tmp_path: Path) -> No
     generate(plan_supervisor(result), 2, "controller", package, relative=True)
     nodes, lefts, moves, scans, states = [], {}, {}, {}, {}
     for robot in ("robot1", "robot2"):
+        ros2.reports({"Platform": "ready"}, f"/{robot}")  # each robot's driver reports where it is
         nodes.append(ros2.start(package, "-r", f"__ns:=/{robot}", rate=20.0, publish_state=True))
         lefts[robot] = ros2.record(Int16, f"/{robot}/rotate_left")
         moves[robot] = ros2.record(Twist, f"/{robot}/cmd_vel")
@@ -549,6 +561,7 @@ def test_bad_parameters_are_refused_without_a_traceback(ros2: Ros2, tmp_path: Pa
     from std_msgs.msg import String
 
     package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
+    ros2.reports(initial_states("examples/maze_solver.rscd"))  # the drivers report where they start
     node = ros2.start(
         package,
         rate=0.0,
@@ -575,6 +588,7 @@ def test_a_goal_while_the_server_is_absent_never_hangs_the_node(ros2: Ros2, tmp_
     from std_msgs.msg import String
 
     package = build_package("examples/pick_and_light.rscd", 2, "controller", tmp_path)
+    ros2.reports(initial_states("examples/pick_and_light.rscd"))  # the drivers report where they start
     node = ros2.start(package, rate=20.0, publish_state=True, server_timeout=1.0)
     states = ros2.record(String, "/state")
     seen = ros2.node.create_publisher(Pose, "/camera/object", 10)

@@ -38,12 +38,13 @@ def render_module(plan: Plan, relative_names: bool = False) -> str:
 
 
 def runtime_files() -> dict[str, str]:
-    """The runtime's modules, by file name (``supervisor.py``, ``ros2.py``, ...), as they are."""
+    """The runtime's modules, by file name (``supervisor.py``, ``ros2.py``, ...), as they are, with
+    the Fast DDS profile the ROS 2 adapter loads (``fastdds.xml``)."""
     folder = files("robosc.runtime").joinpath(RUNTIME_PACKAGE)
     return {
         entry.name: entry.read_text(encoding="utf-8")
         for entry in sorted(folder.iterdir(), key=lambda e: e.name)
-        if entry.name.endswith(".py")
+        if entry.name.endswith((".py", ".xml"))
     }
 
 

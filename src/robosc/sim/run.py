@@ -157,7 +157,15 @@ def run_ros(
         session.setup(sim, bridge, names, used)
         session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
         for i, (name, log) in enumerate(zip(names, event_logs(folder, robots), strict=True)):
-            given: dict[str, object] = {"rate": float(rate), "seed": seed + i, "event_log": log, **(params or {})}
+            # the simulation makes each robot where the model starts it, as it starts its controller
+            # (and never starts a controller again): the robots are where the model's initial state says
+            given: dict[str, object] = {
+                "rate": float(rate),
+                "seed": seed + i,
+                "event_log": log,
+                "trust_initial_state": True,
+                **(params or {}),
+            }
             graph.controller(package, name, given)
         if on_start is not None:
             on_start(graph)
