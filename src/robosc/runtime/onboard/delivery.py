@@ -50,14 +50,24 @@ class Delivery(object):
 
     def __init__(self, node: Any) -> None:
         self.node = node
-        self.sending: List[Tuple[str, Any, List[Any], float]] = []  # since the last follow(): event, topic, before
+        # since the last follow(): event, topic, the values before, the candidates of unconfirmed fields before
+        self.sending: List[Tuple[str, Any, List[Any], Dict[str, Any], float]] = []
         self.pending: List[Pending] = []
+        self.silent: Dict[str, float] = {}  # topic -> since when a subscriber has not acknowledged (ROS 2)
 
     def sent(self, event: str, topic: Any) -> None:
         """The node is putting ``event`` on ``topic`` (before the event's effect)."""
         supervisor = self.node.supervisor
         before = [getattr(supervisor, attribute) for attribute in supervisor.ATTRIBUTES]
-        self.sending.append((event, topic, before, time.monotonic()))
+        self.sending.append((event, topic, before, dict(supervisor.unconfirmed), time.monotonic()))
+
+    def held(self, topic: Any) -> Optional[str]:
+        """Why nothing more may be sent on ``topic`` now: a subscriber did not acknowledge what it
+        was sent within ``ack_timeout`` (a driver that died, a link that is down), until it does."""
+        since = self.silent.get(topic.name)
+        if since is None:
+            return None
+        return "%s has not acknowledged a command for %.1f s" % (topic.name, time.monotonic() - since)
 
     def waiting(self) -> Set[str]:
         """The components that are unconfirmed only while a command to them is on its way."""
@@ -69,12 +79,17 @@ class Delivery(object):
         acknowledged; acknowledged ones are known; late ones stay unconfirmed and are reported."""
         if self.sending:
             sending, self.sending = self.sending, []
-            for event, topic, before, at in sending:
-                self._track(event, topic, before, at)
+            for event, topic, before, unsure, at in sending:
+                self._track(event, topic, before, unsure, at)
+        node = self.node
+        for name in list(self.silent):
+            topic = node.outputs.get(name)
+            if topic is None or (node.listeners(topic) > 0 and node.acknowledged(topic)):
+                del self.silent[name]
+                node.log("info", "%s acknowledges again: its commands are no longer held" % name)
         if not self.pending:
             return
         now = time.monotonic()
-        node = self.node
         for pending in list(self.pending):
             listeners = node.listeners(pending.topic)
             if listeners == 0:
@@ -87,7 +102,7 @@ class Delivery(object):
             elif now >= pending.deadline:  # ROS 1: it kept its subscribers through the window
                 self.pending.remove(pending)
 
-    def _track(self, event: str, topic: Any, before: List[Any], at: float) -> None:
+    def _track(self, event: str, topic: Any, before: List[Any], unsure: Dict[str, Any], at: float) -> None:
         supervisor = self.node.supervisor
         changed: Dict[str, Optional[Tuple[Any, ...]]] = {}
         after: Dict[str, Any] = {}
@@ -96,7 +111,7 @@ class Delivery(object):
             if new is old or attribute not in supervisor.COMPONENT_OF:
                 continue
             after[attribute] = new
-            changed[attribute] = _either(supervisor, attribute, old, new)
+            changed[attribute] = _either(unsure.get(attribute, (old,)), supervisor.unconfirmed.get(attribute, (new,)))
         if not after:
             return
         if self.node.acknowledges:  # ROS 2: unconfirmed until acknowledged
@@ -116,11 +131,18 @@ class Delivery(object):
         """Not acknowledged in time, or its topic lost its subscribers: what it changed is
         unconfirmed (where the robot may be, or anywhere once it changed since), said once."""
         self.pending.remove(pending)
+        if self.node.acknowledges:
+            self.silent.setdefault(pending.topic.name, time.monotonic())
         supervisor = self.node.supervisor
         components = sorted(set(supervisor.COMPONENT_OF[a] for a in pending.after))
         reason = "%s may not have arrived (%s)" % (pending.event, why)
         fields = dict(
-            (a, values if supervisor.versions.get(a, 0) == pending.versions[a] else supervisor.CANDIDATES.get(a))
+            (
+                a,
+                values
+                if supervisor.versions.get(a, 0) == pending.versions[a]
+                else _either(values, supervisor.unconfirmed.get(a, (getattr(supervisor, a),))),
+            )
             for a, values in pending.either.items()
         )
         supervisor.unconfirm(fields, reason)
@@ -129,10 +151,9 @@ class Delivery(object):
         self.node.log("warning", "%s: %s unconfirmed, held until its driver reports" % (reason, ", ".join(components)))
 
 
-def _either(supervisor: Any, attribute: str, old: Any, new: Any) -> Optional[Tuple[Any, ...]]:
-    """The values a field may have when a command may or may not have moved it from ``old`` to
-    ``new``: either, or, where one of them is unconfirmed, every value of its domain."""
-    if isinstance(old, Unknown) or isinstance(new, Unknown):
-        values: Optional[Tuple[Any, ...]] = supervisor.CANDIDATES.get(attribute)
-        return values
-    return (old, new)
+def _either(old: Optional[Tuple[Any, ...]], new: Optional[Tuple[Any, ...]]) -> Optional[Tuple[Any, ...]]:
+    """The values a field may have when a command may or may not have moved it: where it may have
+    been (``old``), or where it may be after (``new``); None (any value) where either is."""
+    if old is None or new is None:
+        return None
+    return tuple(old) + tuple(v for v in new if not any(type(v) is type(o) and v == o for o in old))

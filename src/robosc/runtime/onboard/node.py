@@ -124,9 +124,9 @@ PARAMETERS = (
     ),
     Parameter(
         "clock_skew",
-        0.05,
+        0.0,
         "seconds a robot's clock may be behind this node's, when an answer's stamp is compared with the command "
-        "it answers",
+        "it answers (an answer stamped earlier than that before it is a late duplicate, ignored)",
         0.0,
         3600.0,
     ),
@@ -564,6 +564,11 @@ class NodeCore(object):
             return True  # tau, reset, and data events have nothing to send
         if isinstance(place, Topic):
             topic = place
+            silent = self.delivery.held(topic)
+            if silent is not None:  # what went before it may not have arrived: its robot is held
+                self.warnings("held: %s: %s" % (name, silent), "silent " + name)
+                self.refused = silent
+                return False
             if self.params["wait_for_listeners"] and self.listeners(topic) == 0:
                 # a message nobody subscribes to is lost, and the supervisor would believe the
                 # robot got it (a robot not up yet, a link down): hold the command instead
