@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import math
+import time
 from pathlib import Path
 from typing import Any
 
@@ -328,7 +329,12 @@ def test_view_topics_carry_events_only_while_someone_listens() -> None:
     node.receive(node.inputs["/scan"], scan)
     views = [name for name, _ in node.texts if name.startswith("live_view")]
     assert views == [] and snapshots[0] == 0  # nobody listens: no record is even made
-    listeners[0] = 1
+    listeners[0] = 1  # looked at by the next cycle, at most every 0.1 s (it is a middleware call)
+    node.receive(node.inputs["/scan"], scan)
+    assert [name for name, _ in node.texts if name.startswith("live_view")] == []
+    time.sleep(0.11)
+    node.cycle()
+    node.texts.clear()
     node.receive(node.inputs["/scan"], scan)
     events = [json.loads(text) for name, text in node.texts if name == "live_view/events"]
     assert [e["event"] for e in events][:3] == ["scan_front", "scan_right", "scan_diag_right"]

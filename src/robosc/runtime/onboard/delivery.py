@@ -51,15 +51,16 @@ class Delivery(object):
     def __init__(self, node: Any) -> None:
         self.node = node
         # since the last follow(): event, topic, the values before, the candidates of unconfirmed fields before
-        self.sending: List[Tuple[str, Any, List[Any], Dict[str, Any], float]] = []
+        self.sending: List[Tuple[str, Any, Any, Dict[str, Any], float]] = []
         self.pending: List[Pending] = []
         self.silent: Dict[str, float] = {}  # topic -> since when a subscriber has not acknowledged (ROS 2)
 
     def sent(self, event: str, topic: Any) -> None:
         """The node is putting ``event`` on ``topic`` (before the event's effect)."""
         supervisor = self.node.supervisor
-        before = [getattr(supervisor, attribute) for attribute in supervisor.ATTRIBUTES]
-        self.sending.append((event, topic, before, dict(supervisor.unconfirmed), time.monotonic()))
+        before = type(supervisor).GETTER(supervisor)
+        unsure = dict(supervisor.unconfirmed) if supervisor.unconfirmed else {}
+        self.sending.append((event, topic, before, unsure, time.monotonic()))
 
     def held(self, topic: Any) -> Optional[str]:
         """Why nothing more may be sent on ``topic`` now: a subscriber did not acknowledge what it
@@ -102,13 +103,13 @@ class Delivery(object):
             elif now >= pending.deadline:  # ROS 1: it kept its subscribers through the window
                 self.pending.remove(pending)
 
-    def _track(self, event: str, topic: Any, before: List[Any], unsure: Dict[str, Any], at: float) -> None:
+    def _track(self, event: str, topic: Any, before: Any, unsure: Dict[str, Any], at: float) -> None:
         supervisor = self.node.supervisor
         changed: Dict[str, Optional[Tuple[Any, ...]]] = {}
         after: Dict[str, Any] = {}
-        for attribute, old in zip(supervisor.ATTRIBUTES, before):
-            new = getattr(supervisor, attribute)
-            if new is old or attribute not in supervisor.COMPONENT_OF:
+        for index, attribute in supervisor.TRACKED:
+            new, old = getattr(supervisor, attribute), before[index]
+            if new is old:
                 continue
             after[attribute] = new
             changed[attribute] = _either(unsure.get(attribute, (old,)), supervisor.unconfirmed.get(attribute, (new,)))
@@ -148,6 +149,7 @@ class Delivery(object):
         supervisor.unconfirm(fields, reason)
         for component in components:
             supervisor.why[component] = reason
+        supervisor.health_changes += 1
         self.node.log("warning", "%s: %s unconfirmed, held until its driver reports" % (reason, ", ".join(components)))
 
 

@@ -16,7 +16,7 @@ from __future__ import absolute_import, annotations
 import importlib
 import math
 import struct
-from typing import Any
+from typing import Any, Dict
 
 from .supervisor import ANY
 from .values import fields_of, finite
@@ -66,8 +66,21 @@ def load(package: str, module: str, name: str) -> Any:
     return found
 
 
+_FIELD_TYPES: Dict[type, Dict[str, str]] = {}  # per message class: what field_types says (it never changes)
+
+
 def field_types(message: Any) -> dict[str, str]:
     """Field name -> ROS type name ("float64", "double", "int16", "geometry_msgs/Vector3", ...)."""
+    kind = type(message)
+    found = _FIELD_TYPES.get(kind)
+    if found is None:
+        found = _field_types(message)
+        if len(_FIELD_TYPES) < 1000 and (found or hasattr(message, "get_fields_and_field_types")):
+            _FIELD_TYPES[kind] = found
+    return found
+
+
+def _field_types(message: Any) -> dict[str, str]:
     fields = getattr(message, "get_fields_and_field_types", None)  # ROS 2
     if fields is not None:
         return dict((str(name).lstrip("_"), str(kind)) for name, kind in fields().items())

@@ -241,6 +241,7 @@ class NodeCore(object):
         self.supervisor.skew = self.params["clock_skew"]
         self.delivery = Delivery(self)
         self.reported: Optional[Dict[str, Any]] = None  # the health last published
+        self.health_seen: Any = None  # (supervisor.health_changes, commands on their way) when last looked
         self.report_clients: Dict[str, Any] = {}  # component -> the adapter's client of its report service
         self.asked: Dict[str, float] = {}  # component -> when its driver was last asked for its state
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
@@ -251,6 +252,7 @@ class NodeCore(object):
                 "or an event that tells)" % (", ".join(sorted(self.supervisor.unsure())), REPORT_PREFIX),
             )
         self.sinks: List[Callable[[Dict[str, Any]], Any]] = []
+        self.recorder: Optional[Recorder] = None
         self.event_log: Optional[EventLog] = None
         path = self.params["event_log"]
         if path:
@@ -272,6 +274,10 @@ class NodeCore(object):
         stays unconfirmed until it is acknowledged), and report on ``health`` (latched) when
         what the node holds changed."""
         self.delivery.follow()
+        changes = (self.supervisor.health_changes, len(self.delivery.pending))
+        if changes == self.health_seen:
+            return  # nothing health() shows has changed
+        self.health_seen = changes
         health = self.health()
         if health != self.reported:
             before = self.reported
@@ -402,7 +408,15 @@ class NodeCore(object):
         if self.view_topics:
             self.sinks.append(Gated(self.view_event, lambda: self.text_subscribers(VIEW_EVENTS_TOPIC) > 0))
         if self.sinks:
-            self.supervisor.observer = Recorder(self.supervisor, self.sinks, clock)
+            self.recorder = Recorder(self.supervisor, self.sinks, clock)
+            self.observe()
+
+    def observe(self) -> None:
+        """The supervisor reports its events only while a sink wants them (a viewer listening on
+        live_view/events comes in within a cycle): an event nobody records costs nothing."""
+        recorder = self.recorder
+        if recorder is not None:
+            self.supervisor.observer = recorder if recorder.wanted() else None
 
     def view_page(self, robot_class: Any) -> Optional[bytes]:
         """The live view's page generated next to the robot's module, read when the live view
@@ -484,6 +498,7 @@ class NodeCore(object):
             except Exception as error:  # keep the node alive; the state is unchanged
                 self.warnings("tick failed: %s: %s" % (type(error).__name__, error), "tick")
         self.checkpoint()
+        self.observe()
         if self.params["publish_state"]:
             self.publish_state()
         if self.view_topics:

@@ -14,11 +14,24 @@ from .values import plain
 
 class Gated(object):
     """A sink that wants records only while ``wanted()`` says so (a topic with no subscriber):
-    while no sink wants one, the record is not even made."""
+    while no sink wants one, the record is not even made. What ``wanted()`` says is asked again
+    at most every ``interval`` seconds (a node's cycle looks, not every event)."""
 
-    def __init__(self, sink: Callable[[dict[str, Any]], Any], wanted: Callable[[], bool]) -> None:
+    def __init__(
+        self, sink: Callable[[dict[str, Any]], Any], wanted: Callable[[], bool], interval: float = 0.1
+    ) -> None:
         self.sink = sink
-        self.wanted = wanted
+        self.asked = wanted
+        self.interval = interval
+        self.answer = False
+        self.when = -1e18
+
+    def wanted(self) -> bool:
+        now = time.monotonic()
+        if now - self.when >= self.interval:
+            self.when = now
+            self.answer = bool(self.asked())
+        return self.answer
 
     def __call__(self, record: dict[str, Any]) -> Any:
         return self.sink(record)
@@ -34,6 +47,10 @@ class Recorder(object):
         self.supervisor = supervisor
         self.sinks = list(sinks)
         self.clock = clock
+
+    def wanted(self) -> bool:
+        """Whether any sink wants records now."""
+        return any(not isinstance(s, Gated) or s.wanted() for s in self.sinks)
 
     def __call__(self, event: str, controllable: bool, data: Any) -> None:
         sinks = [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]

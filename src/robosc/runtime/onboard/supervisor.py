@@ -49,6 +49,7 @@ from __future__ import absolute_import, annotations, print_function
 import copy
 import json
 import math
+import operator
 import random
 import sys
 import threading
@@ -303,6 +304,10 @@ class Supervisor(object):
     COMPONENT_OF: ClassVar[Dict[str, str]]  # a component's field (location, variable) -> the component
     COMPONENTS: ClassVar[Dict[str, Tuple[str, ...]]]  # component -> its fields
     CANDIDATES: ClassVar[Dict[str, Optional[Tuple[Any, ...]]]]  # field -> the values to try (None: too many)
+    INDEX: ClassVar[Dict[str, int]]  # field -> its place in ATTRIBUTES (and in values())
+    TRACKED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the components' fields
+    ANSWERED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the fields ANSWERS names
+    GETTER: ClassVar[Callable[[Any], Any]]  # every field's value at once (C speed)
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Supervisor, cls).__init_subclass__(**kwargs)
@@ -321,6 +326,11 @@ class Supervisor(object):
         cls.LABELS = dict((f[0], f[1]) for f in cls.FIELDS)
         cls.ATTRIBUTES = tuple(f[0] for f in cls.FIELDS)
         cls.WAITED = frozenset(c for e in cls.EVENTS for c in e.reads)
+        cls.INDEX = dict((attribute, index) for index, attribute in enumerate(cls.ATTRIBUTES))
+        getter = operator.attrgetter(*cls.ATTRIBUTES) if cls.ATTRIBUTES else (lambda _: ())
+        cls.GETTER = getter if len(cls.ATTRIBUTES) != 1 else (lambda self: (getter(self),))
+        answered = set(field for answers in cls.ANSWERS.values() for field, _ in answers)
+        cls.ANSWERED = tuple((cls.INDEX[f], f) for f in cls.ATTRIBUTES if f in answered)
         cls.COMPONENT_OF = {}
         cls.COMPONENTS = {}
         cls.CANDIDATES = {}
@@ -330,6 +340,7 @@ class Supervisor(object):
                 component = label.split(".")[0]
                 cls.COMPONENT_OF[attribute] = component
                 cls.COMPONENTS[component] = (*cls.COMPONENTS.get(component, ()), attribute)
+        cls.TRACKED = tuple((cls.INDEX[f], f) for f in cls.ATTRIBUTES if f in cls.COMPONENT_OF)
 
     def __init__(
         self,
@@ -351,6 +362,7 @@ class Supervisor(object):
         self.unreadable: Dict[str, int] = {}  # communication -> how many of its messages could not be read
         self.ignored: Dict[str, int] = {}  # uncontrollable event -> how many times it came and was not taken
         self.last_ignored = ""  # why the last one was not taken
+        self.health_changes = 0  # counts the changes of what health() shows
         # while watching (a node sets it), per field: when (this wall clock) a command last changed it,
         # until an answer changes it (it waits for one); and the stamp (the robot's clock) of the last
         # answer that changed it; for telling a late answer from a new one and one that does not come
@@ -380,6 +392,7 @@ class Supervisor(object):
         self._sent: Dict[str, Any] = {}  # data computed since then, per event
         # communications that have not delivered readable data yet: while any, nothing is performed
         self.waiting = set(self.WAITED) if self.wait_for_data else set()
+        self.health_changes += 1
         self._unreadable_since: Dict[str, float] = {}  # communication -> its first unreadable data since readable
         self.stale: FrozenSet[str] = frozenset()  # communications unreadable for longer than data_timeout
 
@@ -408,6 +421,7 @@ class Supervisor(object):
             for c in stale - self.stale:
                 self.warn("%s: no readable data for %.1f s; holding what reads it" % (c, self.data_timeout))
             self.stale = stale
+            self.health_changes += 1
             self._dirty = True
 
     def _filter(self, enabled: Tuple[Callable[..., Optional[str]], ...]) -> Tuple[Callable[..., Optional[str]], ...]:
@@ -452,14 +466,19 @@ class Supervisor(object):
             if attribute not in self.unconfirmed or self.unconfirmed[attribute] != values:
                 self.versions[attribute] = self.versions.get(attribute, 0) + 1
             self.unconfirmed[attribute] = values
+            self.health_changes += 1
             setattr(self, attribute, Unknown(attribute))
-            self.why[self.COMPONENT_OF.get(attribute, self.LABELS[attribute])] = why
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            if self.why.get(component) != why:
+                self.why[component] = why
+                self.health_changes += 1
         self._dirty = True
 
     def know(self, attribute: str, value: Any) -> None:
         """The field ``attribute`` is confirmed to hold ``value``."""
         if attribute in self.unconfirmed:
             del self.unconfirmed[attribute]
+            self.health_changes += 1
             self.versions[attribute] = self.versions.get(attribute, 0) + 1
             component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
             if not any(self.COMPONENT_OF.get(a, self.LABELS[a]) == component for a in self.unconfirmed):
@@ -620,12 +639,12 @@ class Supervisor(object):
 
     def _watched(self, perform: Callable[..., Optional[str]], data: Any) -> Optional[str]:
         """``perform(data)`` noting when each field it changed changed (for late answers)."""
-        before = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        before = type(self).GETTER(self)
         name = perform(data) if data is not None else perform()
         if name is not None:
             now = time.time()
-            for attribute, old in zip(self.ATTRIBUTES, before):
-                if getattr(self, attribute) is not old:
+            for index, attribute in self.TRACKED:
+                if getattr(self, attribute) is not before[index]:
                     self.commanded[attribute] = now
         return name
 
@@ -798,7 +817,7 @@ class Supervisor(object):
             why = self._unanswered(answers, stamp)
             if why is not None:
                 return self._ignore(name, why)
-        saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        saved = type(self).GETTER(self)
         try:
             getattr(self, event.method)(value)
         except Unreadable as error:  # the effect could not read the data: undone, as if it never came
@@ -828,13 +847,16 @@ class Supervisor(object):
         heard = self.heard.get(field)
         return (commanded is not None and stamp + self.skew < commanded) or (heard is not None and stamp < heard)
 
-    def _delivered(self, event: Event, value: Any, saved: list[Any], stamp: Optional[float]) -> None:
+    def _delivered(self, event: Event, value: Any, saved: Any, stamp: Optional[float]) -> None:
         self._dirty = True
         if self.watching:
-            for attribute, before in zip(self.ATTRIBUTES, saved):
-                if getattr(self, attribute) is not before:
-                    self.commanded.pop(attribute, None)
-                    if stamp is not None:
+            index = self.INDEX
+            for attribute in list(self.commanded):  # an answer came: no longer waiting for one
+                if getattr(self, attribute) is not saved[index[attribute]]:
+                    del self.commanded[attribute]
+            if stamp is not None:
+                for place, attribute in self.ANSWERED:
+                    if getattr(self, attribute) is not saved[place]:
                         self.heard[attribute] = max(stamp, self.heard.get(attribute, stamp))
         communication = event.communication
         if communication is not None and (self.waiting or self._unreadable_since):
@@ -844,6 +866,7 @@ class Supervisor(object):
 
     def _ignore(self, name: str, why: str) -> bool:
         self.ignored[name] = self.ignored.get(name, 0) + 1
+        self.health_changes += 1
         self.last_ignored = why
         self.warn("ignored %s: %s" % (name, why), "ignored " + name)
         return False
@@ -870,7 +893,7 @@ class Supervisor(object):
                 return error
             return None, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
 
-        saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        saved = type(self).GETTER(self)
         try:
             outcomes = self._over(run)
         except TooMany as too_many:  # it reads what cannot be tried: anything it may change is unknown
@@ -893,14 +916,17 @@ class Supervisor(object):
         """``communication`` delivered data that could be read."""
         if communication in self.waiting:
             self.waiting.discard(communication)
+            self.health_changes += 1
         if self._unreadable_since.pop(communication, None) is not None and communication in self.stale:
             self.stale = self.stale - {communication}
+            self.health_changes += 1
             self.warn("%s: readable data again" % (communication,))
 
     def _unreadable(self, event: Event, error: BaseException) -> bool:
         """Data of ``event`` that cannot be read: not delivered, counted and reported."""
         communication = event.communication or event.name
         self.unreadable[communication] = self.unreadable.get(communication, 0) + 1
+        self.health_changes += 1
         self._unreadable_since.setdefault(communication, self.clock())
         self.warn(
             "%s: unreadable data (%s: %s); not delivered, the state is kept"

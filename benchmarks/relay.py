@@ -1,0 +1,447 @@
+"""The generated node against a bare relay, on real ROS 2 (rclpy, Fast DDS) and ROS 1 (rosmaster,
+rospy), in one run: message in -> command out.
+
+The maze solver's node, with its default parameters but ``tick_on_message`` (a cycle right
+after each message, as a relay does; the default waits for the 10 Hz timer), and a bare relay
+written for the same middleware (a scan in, a Twist out, nothing checked), take turns behind
+one robot process that sends a scan, waits for the command, and sends the next after a gap.
+Printed side by side, in microseconds, median (p99):
+
+* **inside the node**: from the subscription callback being entered to the command's
+  ``publish()`` returning (measured in the node's process);
+* **round trip**: from the robot's ``publish()`` to the command arriving in the robot.
+
+The scans alternate between a wall on the right and none, so that the node's state changes
+with every message (as a robot's does while it drives). Then, for each, what it does to the robot's storage in steady operation: the ``fsync`` /
+``fdatasync`` / ``sync*`` / ``msync`` calls per message (counted with strace, in a run of its
+own, where strace is installed) and the bytes it made the kernel write to storage
+(``/proc/PID/io``), with the writes per hour of a line follower deciding 20 times a second.
+
+    python benchmarks/relay.py [--samples 400] [--ros 2 1] [--baseline 5fa21e9]
+
+With ``--baseline REV`` that revision's generated node runs in the same rounds. Needs robosc,
+rclpy (the ros2 extra) and, for ROS 1, Debian's rospy for /usr/bin/python3; not the test extras.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
+MODEL = ROOT / "examples" / "maze_solver.rscd"
+SYNCS = "fsync,fdatasync,syncfs,sync,sync_file_range,msync"
+
+# the generated node, its receive and publish timed (patched before the node is made)
+NODE = """
+import json, signal, sys, time
+sys.path.insert(0, {path!r})
+{setup}
+from {package}.onboard import {adapter} as adapter
+from {package}.{module} import Robot
+inside, pending = [], [None]
+receive, publish = adapter.SupervisorNode.receive, adapter.SupervisorNode.publish
+def timed_receive(self, topic, message, *rest):
+    if topic.name.endswith("scan"):
+        pending[0] = time.perf_counter()
+    return receive(self, topic, message, *rest)
+def timed_publish(self, topic, message):
+    done = publish(self, topic, message)
+    if pending[0] is not None and topic.name.endswith("cmd_vel"):
+        inside.append(time.perf_counter() - pending[0])
+        pending[0] = None
+    return done
+adapter.SupervisorNode.receive = timed_receive
+adapter.SupervisorNode.publish = timed_publish
+def save(*_):
+    with open({out!r}, "w") as handle:
+        json.dump(inside, handle)
+    sys.exit(0)
+signal.signal(signal.SIGUSR1, save)
+{run}
+"""
+
+RELAY_ROS2 = """
+import json, signal, sys, time, rclpy
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from sensor_msgs.msg import LaserScan
+from geometry_msgs.msg import Twist
+rclpy.init()
+node = rclpy.create_node("relay")
+out = node.create_publisher(Twist, "/cmd_vel", QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
+inside = []
+def relay(message):
+    start = time.perf_counter()
+    command = Twist()
+    command.linear.x = 0.3
+    out.publish(command)
+    inside.append(time.perf_counter() - start)
+node.create_subscription(LaserScan, "/scan", relay, QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+def save(*_):
+    with open(sys.argv[1], "w") as handle:
+        json.dump(inside, handle)
+    sys.exit(0)
+signal.signal(signal.SIGUSR1, save)
+node.create_timer(0.5, lambda: None)  # wakes the executor now and then, so that the signal is handled
+rclpy.spin(node)
+"""
+
+RELAY_ROS1 = """
+import json, signal, sys, time, rospy
+from sensor_msgs.msg import LaserScan
+from geometry_msgs.msg import Twist
+rospy.init_node("relay", disable_signals=True)
+out = rospy.Publisher("/cmd_vel", Twist, queue_size=10)
+inside = []
+def relay(message):
+    start = time.perf_counter()
+    command = Twist()
+    command.linear.x = 0.3
+    out.publish(command)
+    inside.append(time.perf_counter() - start)
+rospy.Subscriber("/scan", LaserScan, relay, queue_size=10)
+def save(*_):
+    with open(sys.argv[1], "w") as handle:
+        json.dump(inside, handle)
+    rospy.signal_shutdown("done")
+signal.signal(signal.SIGUSR1, save)
+rospy.spin()
+"""
+
+# the robot: a scan, then the command it causes, then the next scan after a gap
+ROBOT_ROS2 = """
+import json, sys, time, rclpy
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from sensor_msgs.msg import LaserScan
+from geometry_msgs.msg import Twist
+rclpy.init()
+node = rclpy.create_node("robot")
+scan = node.create_publisher(LaserScan, "/scan", QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+got = []
+node.create_subscription(Twist, "/cmd_vel", got.append, QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
+message = LaserScan(); message.ranges = [5.0] * 360
+other = LaserScan(); other.ranges = [5.0] * 270 + [0.5] + [5.0] * 89  # a wall on the right: the state changes
+trips, samples, gap = [], int(sys.argv[2]), float(sys.argv[3])
+end = time.time() + 30
+while scan.get_subscription_count() == 0 or node.count_publishers("/cmd_vel") == 0:
+    rclpy.spin_once(node, timeout_sec=0.05)
+    if time.time() > end: sys.exit(1)
+while not got and time.time() < end:  # until the node has heard a scan (and got the reports)
+    scan.publish(message); rclpy.spin_once(node, timeout_sec=0.1)
+while len(trips) < samples:
+    got.clear()
+    message, other = other, message
+    start = time.perf_counter()
+    scan.publish(message)
+    limit = time.perf_counter() + 1.0
+    while not got and time.perf_counter() < limit:
+        rclpy.spin_once(node, timeout_sec=0.001)
+    if got:
+        trips.append(time.perf_counter() - start)
+    time.sleep(gap)
+with open(sys.argv[1], "w") as handle:
+    json.dump(trips, handle)
+"""
+
+ROBOT_ROS1 = """
+import json, sys, threading, time, rospy
+from sensor_msgs.msg import LaserScan
+from geometry_msgs.msg import Twist
+rospy.init_node("robot", disable_signals=True)
+arrived = threading.Event()
+rospy.Subscriber("/cmd_vel", Twist, lambda _: arrived.set(), queue_size=10)
+scan = rospy.Publisher("/scan", LaserScan, queue_size=10)
+message = LaserScan(); message.ranges = [5.0] * 360
+other = LaserScan(); other.ranges = [5.0] * 270 + [0.5] + [5.0] * 89  # a wall on the right: the state changes
+trips, samples, gap = [], int(sys.argv[2]), float(sys.argv[3])
+end = time.time() + 30
+while scan.get_num_connections() == 0 and time.time() < end:
+    time.sleep(0.05)
+while not arrived.is_set() and time.time() < end:
+    scan.publish(message); time.sleep(0.1)
+time.sleep(0.3)
+while len(trips) < samples:
+    arrived.clear()
+    message, other = other, message
+    start = time.perf_counter()
+    scan.publish(message)
+    if arrived.wait(1.0):
+        trips.append(time.perf_counter() - start)
+    time.sleep(gap)
+with open(sys.argv[1], "w") as handle:
+    json.dump(trips, handle)
+"""
+
+REPORTS_ROS2 = """
+import rclpy
+from std_srvs.srv import Trigger
+rclpy.init()
+node = rclpy.create_node("platform_driver")
+def report(request, response):
+    response.success, response.message = True, "ready"
+    return response
+node.create_service(Trigger, "/robosc/report/Platform", report)
+rclpy.spin(node)
+"""
+
+REPORTS_ROS1 = """
+import rospy
+from std_srvs.srv import Trigger, TriggerResponse
+rospy.init_node("platform_driver")
+rospy.Service("/robosc/report/Platform", Trigger, lambda request: TriggerResponse(True, "ready"))
+rospy.spin()
+"""
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def generate(ros: int, out: Path, revision: str | None, work: Path) -> tuple[Path, str, str]:
+    """The maze solver's package (this robosc, or ``revision``'s): (folder, package, module)."""
+    env = dict(os.environ)
+    if revision is not None:
+        tree = work / f"robosc-{revision}"
+        if not tree.exists():
+            archive = subprocess.run(
+                ["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True
+            )
+            tree.mkdir(parents=True)
+            subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
+        env["PYTHONPATH"] = str(tree / "src")
+    subprocess.run(
+        [sys.executable, "-m", "robosc", "generate", "--ros", str(ros), str(MODEL), "-o", str(out)],
+        env=env,
+        check=True,
+        capture_output=True,
+    )
+    package = next(p.name for p in (out / ("src" if ros == 1 else "")).iterdir() if (p / "onboard").is_dir())
+    module = next(p.stem for p in (out / ("src" if ros == 1 else "") / package).glob("*_supervisor.py"))
+    return out, package, module
+
+
+class Middleware:
+    """One ROS graph on this machine only: its environment and its processes."""
+
+    def __init__(self, ros: int, work: Path) -> None:
+        self.ros, self.work = ros, work
+        self.log = open(work / f"ros{ros}.log", "ab")  # noqa: SIM115
+        self.processes: list[subprocess.Popen[bytes]] = []
+        if ros == 2:
+            domain = 100 + os.getpid() % 100
+            self.env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(domain)}
+            self.python = sys.executable
+        else:
+            port = free_port()
+            self.env = {
+                **{k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "PYTHON"))},
+                "ROS_MASTER_URI": f"http://127.0.0.1:{port}",
+                "ROS_HOSTNAME": "127.0.0.1",
+                "ROS_HOME": str(work / "ros_home"),
+            }
+            self.python = ROS1_PYTHON
+            self.start([ROS1_PYTHON, "/usr/bin/rosmaster", "--core", "-p", str(port)])
+            time.sleep(1.5)
+        self.start([self.python, "-c", REPORTS_ROS2 if ros == 2 else REPORTS_ROS1])
+
+    def start(self, command: list[str], env: dict[str, str] | None = None) -> subprocess.Popen[bytes]:
+        process = subprocess.Popen(command, env=env or self.env, stdout=self.log, stderr=self.log)
+        self.processes.append(process)
+        return process
+
+    def stop(self) -> None:
+        for process in reversed(self.processes):
+            if process.poll() is None:
+                process.send_signal(signal.SIGINT)
+        for process in self.processes:
+            try:
+                process.wait(5)
+            except subprocess.TimeoutExpired:
+                process.kill()
+        self.log.close()
+
+
+def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> list[str]:
+    folder, name, module = package
+    if mw.ros == 2:
+        params = ["--ros-args", "-p", "tick_on_message:=true"]
+        run = f'adapter.main(Robot, "controller", ["bench", *{params!r}])'
+        return [
+            mw.python,
+            "-c",
+            NODE.format(path=str(folder), setup="", package=name, module=module, adapter="ros2", out=str(out), run=run),
+        ]
+    setup = "sys.argv[1:] = ['__name:=bench', '_tick_on_message:=true']"
+    run = 'adapter.main(Robot, "controller", "bench")'
+    return [
+        mw.python,
+        "-c",
+        NODE.format(
+            path=str(folder / "src"), setup=setup, package=name, module=module, adapter="ros1", out=str(out), run=run
+        ),
+    ]
+
+
+def relay_command(mw: Middleware, out: Path) -> list[str]:
+    return [mw.python, "-c", RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1, str(out)]
+
+
+def storage_writes(pid: int) -> int:
+    """Bytes the process has made the kernel write to storage so far."""
+    try:
+        for line in Path(f"/proc/{pid}/io").read_text().splitlines():
+            if line.startswith("write_bytes:"):
+                return int(line.split()[1])
+    except OSError:
+        pass
+    return -1
+
+
+def round_of(mw: Middleware, build: Any, samples: int, gap: float, strace: bool) -> dict[str, Any]:
+    """One node (``build(out)``: its command line, writing its inside times to ``out``) behind the
+    robot: its inside and round-trip times, its syncs and storage writes."""
+    tag = f"{time.monotonic_ns()}"
+    inside_file, trips_file, strace_file = (mw.work / f"{tag}.{x}" for x in ("inside", "trips", "strace"))
+    command = build(inside_file)
+    if strace:
+        command = ["strace", "-f", "-c", "-e", f"trace={SYNCS}", "-o", str(strace_file), *command[:1], *command[1:]]
+    node = mw.start(command)
+    robot_code = ROBOT_ROS2 if mw.ros == 2 else ROBOT_ROS1
+    time.sleep(1.0)
+    written = storage_writes(node.pid) if not strace else -1
+    robot = mw.start([mw.python, "-c", robot_code, str(trips_file), str(samples), str(gap)])
+    robot.wait(60 + samples * (gap + 0.05) * 3)
+    written_after = storage_writes(node.pid) if not strace else -1
+    node.send_signal(signal.SIGUSR1)  # the node writes its inside times and ends
+    try:
+        node.wait(10)
+    except subprocess.TimeoutExpired:
+        node.kill()
+    mw.processes.remove(node)
+    mw.processes.remove(robot)
+    trips = json.loads(trips_file.read_text()) if trips_file.exists() else []
+    inside = json.loads(inside_file.read_text()) if inside_file.exists() else []
+    syncs = None
+    if strace and strace_file.exists():
+        syncs = 0
+        for line in strace_file.read_text().splitlines():
+            parts = line.split()
+            if len(parts) >= 5 and parts[-1] in SYNCS.split(",") and parts[3].isdigit():
+                syncs += int(parts[3])
+    return {
+        "inside": inside,
+        "trips": trips,
+        "syncs": syncs,
+        "written": (written_after - written) if written >= 0 and written_after >= 0 else None,
+    }
+
+
+def us(values: list[float], q: float | None = None) -> float:
+    if not values:
+        return float("nan")
+    if q is None:
+        return statistics.median(values) * 1e6
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, round(q / 100 * (len(ordered) - 1)))] * 1e6
+
+
+def measure(ros: int, samples: int, gap: float, rounds: int, baseline: str | None, work: Path) -> list[dict[str, Any]]:
+    mw = Middleware(ros, work)
+    try:
+        subjects: list[tuple[str, Any]] = []
+        ours = generate(ros, work / f"ours_{ros}", None, work)
+        subjects.append(("robosc, default parameters", lambda out: node_command(mw, ours, out)))
+        if baseline is not None:
+            theirs = generate(ros, work / f"base_{ros}", baseline, work)
+            subjects.append((f"robosc {baseline}, default parameters", lambda out: node_command(mw, theirs, out)))
+        subjects.append(("bare relay", lambda out: relay_command(mw, out)))
+        results: dict[str, dict[str, Any]] = {}
+        for _ in range(rounds):  # taking turns: the machine's noise falls on all alike
+            for label, build in subjects:
+                found = round_of(mw, build, samples // rounds, gap, strace=False)
+                entry = results.setdefault(label, {"inside": [], "trips": [], "written": 0, "messages": 0})
+                entry["inside"] += found["inside"]
+                entry["trips"] += found["trips"]
+                entry["written"] += found["written"] or 0
+                entry["messages"] += len(found["trips"])
+        if shutil.which("strace"):
+            for label, build in subjects:
+                found = round_of(mw, build, min(100, samples), gap, strace=True)
+                results[label]["syncs"] = found["syncs"]
+                results[label]["sync_messages"] = len(found["trips"])
+        return [dict(ros=ros, label=label, **entry) for label, entry in results.items()]
+    finally:
+        mw.stop()
+
+
+def table(rows: list[dict[str, Any]]) -> str:
+    lines = [
+        "| ROS | node | inside the node, us: median (p99) | round trip, us: median (p99) | syncs per message | bytes to storage per message | writes per hour at 20 Hz |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        syncs = r.get("syncs")
+        per = "n/a (no strace)" if syncs is None else f"{syncs / max(1, r.get('sync_messages', 1)):.2f}"
+        written = r["written"] / max(1, r["messages"])
+        hour = (
+            "n/a"
+            if syncs is None
+            else f"{syncs / max(1, r.get('sync_messages', 1)) * 20 * 3600:,.0f} syncs, {written * 20 * 3600:,.0f} bytes"
+        )
+        lines.append(
+            f"| {r['ros']} | {r['label']} | {us(r['inside']):,.0f} ({us(r['inside'], 99):,.0f}) "
+            f"| {us(r['trips']):,.0f} ({us(r['trips'], 99):,.0f}) | {per} | {written:,.0f} | {hour} |"
+        )
+    return "\n".join(lines)
+
+
+def ratios(rows: list[dict[str, Any]]) -> str:
+    out = []
+    for ros in sorted({r["ros"] for r in rows}, reverse=True):
+        relay = next(r for r in rows if r["ros"] == ros and r["label"] == "bare relay")
+        for r in rows:
+            if r["ros"] == ros and r is not relay:
+                out.append(
+                    f"ROS {ros}, {r['label']}: {us(r['inside']) / us(relay['inside']):.2f}x the relay inside the node, "
+                    f"{us(r['trips']) / us(relay['trips']):.3f}x its round trip (medians)"
+                )
+    return "\n".join(out)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--samples", type=int, default=400)
+    parser.add_argument("--rounds", type=int, default=4)
+    parser.add_argument("--gap", type=float, default=0.02, help="seconds between a command and the next scan")
+    parser.add_argument("--ros", type=int, nargs="+", default=[2, 1], choices=[1, 2])
+    parser.add_argument("--baseline", default=None, help="also run this revision's generated node, in the same rounds")
+    args = parser.parse_args()
+    rows: list[dict[str, Any]] = []
+    with tempfile.TemporaryDirectory(prefix="robosc-relay-") as folder:
+        print("logs and packages in", folder, file=sys.stderr)
+        for ros in args.ros:
+            if ros == 1 and not Path(ROS1_PYTHON).exists():
+                print("ROS 1: no", ROS1_PYTHON)
+                continue
+            rows += measure(ros, args.samples, args.gap, args.rounds, args.baseline, Path(folder))
+    print(table(rows))
+    print()
+    print(ratios(rows))
+
+
+if __name__ == "__main__":
+    main()
