@@ -94,8 +94,11 @@ def save(*_):
         json.dump(inside, handle)
     sys.exit(0)
 signal.signal(signal.SIGUSR1, save)
-node.create_timer(0.5, lambda: None)  # wakes the executor now and then, so that the signal is handled
-rclpy.spin(node)
+node.create_timer(0.1, lambda: None)  # wakes the executor now and then, so that the signal is handled
+from rclpy.executors import SingleThreadedExecutor  # spun as robosc's node is
+executor = SingleThreadedExecutor()
+executor.add_node(node)
+executor.spin()
 """
 
 RELAY_ROS1 = """
@@ -296,8 +299,12 @@ def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> l
     ]
 
 
-def relay_command(mw: Middleware, out: Path) -> list[str]:
-    return [mw.python, "-c", RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1, str(out)]
+def relay_command(mw: Middleware, out: Path, profile: bool = False) -> list[str]:
+    command = [mw.python, "-c", RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1, str(out)]
+    if profile:  # the Fast DDS profile robosc's nodes load (onboard/fastdds.xml)
+        xml = ROOT / "src/robosc/runtime/onboard/fastdds.xml"
+        command = ["env", f"FASTRTPS_DEFAULT_PROFILES_FILE={xml}", *command]
+    return command
 
 
 def storage_writes(pid: int) -> int:
@@ -326,7 +333,13 @@ def round_of(mw: Middleware, build: Any, samples: int, gap: float, strace: bool)
     robot = mw.start([mw.python, "-c", robot_code, str(trips_file), str(samples), str(gap)])
     robot.wait(60 + samples * (gap + 0.05) * 3)
     written_after = storage_writes(node.pid) if not strace else -1
-    node.send_signal(signal.SIGUSR1)  # the node writes its inside times and ends
+    target = node.pid
+    if strace:  # the node is strace's child
+        try:
+            target = int(Path(f"/proc/{node.pid}/task/{node.pid}/children").read_text().split()[0])
+        except (OSError, IndexError, ValueError):
+            pass
+    os.kill(target, signal.SIGUSR1)  # the node writes its inside times and ends
     try:
         node.wait(10)
     except subprocess.TimeoutExpired:
@@ -369,6 +382,8 @@ def measure(ros: int, samples: int, gap: float, rounds: int, baseline: str | Non
             theirs = generate(ros, work / f"base_{ros}", baseline, work)
             subjects.append((f"robosc {baseline}, default parameters", lambda out: node_command(mw, theirs, out)))
         subjects.append(("bare relay", lambda out: relay_command(mw, out)))
+        if ros == 2:
+            subjects.append(("bare relay, robosc's DDS profile", lambda out: relay_command(mw, out, True)))
         results: dict[str, dict[str, Any]] = {}
         for _ in range(rounds):  # taking turns: the machine's noise falls on all alike
             for label, build in subjects:
@@ -429,10 +444,13 @@ def main() -> None:
     parser.add_argument("--gap", type=float, default=0.02, help="seconds between a command and the next scan")
     parser.add_argument("--ros", type=int, nargs="+", default=[2, 1], choices=[1, 2])
     parser.add_argument("--baseline", default=None, help="also run this revision's generated node, in the same rounds")
+    parser.add_argument("--keep", default=None, help="keep the packages and logs in this folder")
     args = parser.parse_args()
     rows: list[dict[str, Any]] = []
     with tempfile.TemporaryDirectory(prefix="robosc-relay-") as folder:
-        print("logs and packages in", folder, file=sys.stderr)
+        if args.keep:
+            folder = args.keep
+            Path(folder).mkdir(parents=True, exist_ok=True)
         for ros in args.ros:
             if ros == 1 and not Path(ROS1_PYTHON).exists():
                 print("ROS 1: no", ROS1_PYTHON)

@@ -171,6 +171,9 @@ class Topic(object):
         self.type: Any = None  # the message class, loaded by the adapter
         self.publisher: Any = None
         self.forward: Any = None  # supervision layer: the other side of the topic
+        # the data last sent and the message made of it, used again while the data is the very same
+        # object (a model's constant data is): a message is never changed once made
+        self.made: Any = None
 
 
 class Call(object):
@@ -539,26 +542,29 @@ class NodeCore(object):
         wall clock, seconds), where the middleware or the message tells: a message stamped no later
         than the last one taken from the topic is a duplicate (DDS history given again), ignored."""
         try:
-            if stamp is not None:
-                last = self.stamps.get(topic.name)
-                if last is not None and stamp <= last:
-                    self.supervisor.ignored[topic.name] = self.supervisor.ignored.get(topic.name, 0) + 1
-                    self.warnings(
-                        "ignored a message on %s: stamped %.3f s before the last one taken (a duplicate)"
-                        % (topic.name, last - stamp),
-                        "duplicate " + topic.name,
-                    )
-                    return
-                self.stamps[topic.name] = stamp
-            for event in topic.events:
-                comm = self.supervisor.COMMUNICATION[event.communication]
-                self.supervisor.deliver(event.name, received(comm, message), stamp=stamp)
-            self.after_message()
+            if stamp is None or self.fresh(topic, stamp):
+                supervisor = self.supervisor
+                deliver = supervisor.deliver
+                for event in topic.events:
+                    deliver(event.name, received(supervisor.COMMUNICATION[event.communication], message), True, stamp)
+                self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
         self.checkpoint()
         if topic.forward is not None:
             topic.forward.publish(message)
+
+    def fresh(self, topic: Topic, stamp: float) -> bool:
+        """Whether a message stamped ``stamp`` is later than the last one taken from ``topic``;
+        else it is a duplicate (DDS history given again), ignored and reported."""
+        last = self.stamps.get(topic.name)
+        if last is not None and stamp <= last:
+            self.supervisor.ignore(
+                topic.name, "stamped %.3f s before the last one taken from it (a duplicate)" % (last - stamp)
+            )
+            return False
+        self.stamps[topic.name] = stamp
+        return True
 
     def answer(self, event: Any, value: Any) -> None:
         """A service's or action's response, error or feedback came back."""
@@ -593,11 +599,16 @@ class NodeCore(object):
             if self.mode == "supervisor":
                 message = data  # the controller's own message, already checked
             else:
-                try:
-                    message = fill(topic.type(), data, topic.name)
-                except Unsendable as error:
-                    self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
-                    return False
+                made = topic.made
+                if made is not None and made[0] is data:  # the same (constant) data as last time
+                    message = made[1]
+                else:
+                    try:
+                        message = fill(topic.type(), data, topic.name)
+                    except Unsendable as error:
+                        self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
+                        return False
+                    topic.made = (data, message)
             self.delivery.sent(name, topic)
             self.publish(topic, message)
             return True

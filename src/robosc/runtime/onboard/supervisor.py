@@ -864,6 +864,10 @@ class Supervisor(object):
         if self.observer is not None:
             self._record(event.name, False, value)
 
+    def ignore(self, name: str, why: str) -> bool:
+        """``name`` (an event, or a topic's message) came and is not taken: counted, reported."""
+        return self._ignore(name, why)
+
     def _ignore(self, name: str, why: str) -> bool:
         self.ignored[name] = self.ignored.get(name, 0) + 1
         self.health_changes += 1
