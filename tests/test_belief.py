@@ -108,6 +108,14 @@ def test_a_stop_message_tells_where_the_stop_is_wherever_it_was() -> None:
     assert MOVE in moves(node)
 
 
+def test_an_answer_tells_only_what_it_tells_from_wherever_the_component_may_be() -> None:
+    """door_opened from an unknown door: it may be spurious (then the door is where it was, not
+    opening), so the door is open, closed or closing: not confirmed."""
+    robot = WAREHOUSE(confirmed=False)
+    assert robot.deliver("door_opened")
+    assert robot.unconfirmed["a16_Door"] == ("closed", "open", "closing")
+
+
 @pytest.mark.parametrize("report", ["nowhere", '{"state": "stopped", "speed": 3}', "{bad json", "", "[1]"])
 def test_a_report_that_cannot_be_where_the_component_is_is_refused(report: str) -> None:
     node = Node("examples/line_follower.rscd")
@@ -185,8 +193,12 @@ def test_a_command_not_acknowledged_in_time_leaves_its_robot_unconfirmed_and_ask
     assert any("open_door may not have arrived" in text for level, text in node.logs if level == "warning")
     node.cycle()
     assert "Door" in node.asked_for
+    topic = node.outputs["open_door"]
+    assert node.delivery.held(topic) is not None  # nothing more on that topic until it acknowledges
+    assert node.send("open_door", None) is False
     node.acked = True  # an acknowledgement after the time-out does not confirm: only the driver does
     node.cycle()
+    assert node.delivery.held(topic) is None
     assert "a16_Door" in node.supervisor.unconfirmed
     node.answers["Door"] = "opening"
     time.sleep(0.02)
@@ -314,3 +326,25 @@ def test_what_is_allowed_where_the_robots_may_be_is_allowed_where_they_are(truth
             assert getattr(known, field) in unsure.unconfirmed[field]
         else:
             assert value == getattr(known, field)
+
+
+def test_the_example_of_the_docs_prints_what_the_page_shows(capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    import re
+
+    page = (ROOT / "docs/howto/restarts.md").read_text()
+    code = re.findall(r"```python\n(.*?)```", page, re.S)[0]
+    shown = re.findall(r"prints\n\n```text\n(.*?)```", page, re.S)[0]
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "docs/howto/restarts.md", "exec"), {})
+    assert capsys.readouterr().out == shown
+
+
+def test_a_command_whose_data_depends_on_what_is_unconfirmed_is_not_sent() -> None:
+    lamp = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "tests/models/belief/lamp.rscd")))).Robot
+    robot = lamp(seed=1, confirmed=False)
+    sent: list[object] = []
+    robot.send = lambda name, data: sent.append(data) or True  # type: ignore[method-assign]
+    assert robot.allowed() == ["switch"]  # allowed wherever the lamp is ...
+    assert robot.perform("switch") is False and sent == []  # ... but it would send true or false
+    assert robot.confirm("Light", "lit") is None
+    assert robot.perform("switch") is True and sent == [False]

@@ -1,0 +1,351 @@
+"""The fault table of issue 29 on real ROS 2, for this robosc and a baseline revision, side by side:
+the warehouse's coordinator (its default parameters) behind stand-ins for the robots and the
+door that answer as the model says and report where they are when asked
+(tests/warehouse_world.py), every command it sent replayed through the warehouse's rules
+against where the robots really were.
+
+* **killed three ways**: ``kill -9`` right after a command went out, while an answer is due
+  (it comes while the coordinator is down), and with a robot in the aisle; the same command
+  line each time. Forbidden commands, and restarts after which nothing moved for 20 s.
+* **a driver killed**: bot2's driver (a process of its own) stopped and killed in the aisle.
+  Forbidden commands, and how long bot2 was still commanded.
+* **answers twice, and spurious**: every answer sent twice, a ``charged`` every second from a
+  robot that is not charging. Forbidden commands, and answers written to the event log as
+  events that no robot gave.
+* **the stop held, restarted**: the line follower stopped, killed, started again with its
+  state file kept, and with it deleted: move commands in 8 s.
+
+    python benchmarks/faults.py [--baseline 5fa21e9] [--runs 1]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))
+
+from warehouse_world import ANSWERS, COMMANDS, ROBOTS, World, forbidden, topic  # noqa: E402
+
+PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
+
+
+def generate(model: str, out: Path, revision: str | None, work: Path) -> tuple[Path, str]:
+    env = dict(os.environ)
+    if revision is not None:
+        tree = work / f"robosc-{revision}"
+        if not tree.exists():
+            archive = subprocess.run(
+                ["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True
+            )
+            tree.mkdir(parents=True)
+            subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
+        env["PYTHONPATH"] = str(tree / "src")
+    subprocess.run(
+        [sys.executable, "-m", "robosc", "generate", "--ros", "2", str(ROOT / model), "-o", str(out)],
+        env=env,
+        check=True,
+        capture_output=True,
+    )
+    module = next(p.name for p in out.iterdir() if (p / "node.py").exists())
+    return out, module
+
+
+class Graph:
+    """A ROS 2 domain of its own: the test side's node, and the processes started."""
+
+    def __init__(self, work: Path) -> None:
+        import rclpy
+        from rclpy.executors import SingleThreadedExecutor
+
+        self.work = work
+        self.domain = 160 + os.getpid() % 60
+        self.env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(self.domain)}
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, domain_id=self.domain)
+        self.node = rclpy.create_node("faults", context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.processes: list[subprocess.Popen[bytes]] = []
+        self.log = open(work / "faults.log", "ab")  # noqa: SIM115
+
+    def start(
+        self, package: tuple[Path, str], *args: str, env: dict[str, str] | None = None
+    ) -> subprocess.Popen[bytes]:
+        folder, module = package
+        process = subprocess.Popen(
+            [sys.executable, "-m", f"{module}.node", "--ros-args", *args],
+            env={**self.env, "PYTHONPATH": str(folder), **(env or {})},
+            stdout=self.log,
+            stderr=self.log,
+        )
+        self.processes.append(process)
+        return process
+
+    def spin(self, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.executor.spin_once(timeout_sec=0.01)
+
+    def close(self) -> None:
+        for process in self.processes:
+            if process.poll() is None:
+                process.kill()
+                process.wait(10)
+        self.executor.shutdown()
+        self.node.destroy_node()
+        self.context.try_shutdown()
+        self.log.close()
+
+
+class Wire:
+    """The world on the graph (as tests/test_faults_ros.py puts it there)."""
+
+    def __init__(self, graph: Graph, world: World, robots: tuple[str, ...] = ROBOTS) -> None:
+        from std_msgs.msg import Empty
+        from std_srvs.srv import Trigger
+
+        self.graph, self.world, self.empty = graph, world, Empty
+        self.publishers: dict[str, Any] = {}
+        node = graph.node
+        for event in COMMANDS:
+            if "." not in event or event.partition(".")[0] in robots:
+                node.create_subscription(Empty, "/" + topic(event), lambda _, e=event: world.command(e), 100)
+        for event in ANSWERS:
+            if "." not in event or event.partition(".")[0] in robots:
+                self.publishers[event] = node.create_publisher(Empty, "/" + topic(event), 100)
+        for component in (*robots, "Door"):
+
+            def serve(request: Any, response: Any, component: str = component) -> Any:
+                response.success, response.message = True, world.rules.report(component)
+                return response
+
+            node.create_service(Trigger, "/robosc/report/" + component, serve)
+
+    def publish(self, event: str) -> None:
+        self.publishers[event].publish(self.empty())
+
+    def run(self, seconds: float, until: Any = None) -> bool:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.world.step(self.publish)
+            self.graph.executor.spin_once(timeout_sec=0.01)
+            if until is not None and until():
+                return True
+        return until is None
+
+
+def log_of(path: Path) -> list[dict[str, Any]]:
+    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.exists() else []
+
+
+def gos(world: World) -> int:
+    return sum(1 for _, e in world.received if e.endswith(".go"))
+
+
+def killed_three_ways(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    graph = Graph(work)
+    log = work / "killed.jsonl"
+    world = World(delay=0.3)
+    wire = Wire(graph, world)
+    try:
+        node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+        frozen = 0
+        for moment in ("command", "answer", "aisle"):
+            before = len(world.received)
+            condition = {
+                "command": lambda before=before: len(world.received) > before,
+                "answer": lambda: any(not d[2] for d in world.due),
+                "aisle": lambda: any(
+                    w in ("out2", "out3", "shelf", "back3", "back2") for w in world.rules.where.values()
+                ),
+            }[moment]
+            wire.run(60, condition)
+            node.send_signal(signal.SIGKILL)
+            node.wait(10)
+            wire.run(1.0)
+            done = gos(world)
+            node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+            if not wire.run(20, lambda done=done: gos(world) >= done + 6):
+                frozen += 1
+        found, checked = forbidden(log_of(log), world.received, world.sent)
+        return {"forbidden": len(found), "commands": checked, "frozen restarts": frozen}
+    finally:
+        graph.close()
+
+
+DRIVER = (ROOT / "tests" / "test_faults_ros.py").read_text().split('DRIVER = """', 1)[1].split('"""', 1)[0]
+
+
+def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    graph = Graph(work)
+    log = work / "driver.jsonl"
+    world = World(delay=0.3, muted=("bot2",))
+    wire = Wire(graph, world, robots=("bot1", "bot3"))
+    lines: list[dict[str, Any]] = []
+    try:
+        driver = subprocess.Popen(
+            [sys.executable, "-c", DRIVER, str(graph.domain)], env=graph.env, stdout=subprocess.PIPE, text=True
+        )
+        graph.processes.append(driver)  # type: ignore[arg-type]
+
+        def read() -> None:
+            assert driver.stdout is not None
+            for line in driver.stdout:
+                if line.startswith("{"):
+                    lines.append(json.loads(line))
+
+        threading.Thread(target=read, daemon=True).start()
+        graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+        wire.run(60, lambda: bool(lines) and lines[-1]["where"] in ("out1", "out2", "out3", "back3", "back2"))
+        driver.send_signal(signal.SIGSTOP)
+        stopped = time.time()
+        time.sleep(0.2)
+        driver.send_signal(signal.SIGKILL)
+        driver.wait(10)
+        time.sleep(0.3)
+        wire.run(25)
+        for line in lines:
+            if "received" in line:
+                world.received.append((line["t"], line["received"]))
+            if "sent" in line:
+                world.sent.append((line["t"], line["sent"], False))
+        found, checked = forbidden(log_of(log), world.received, world.sent)
+        late = [r["time"] - stopped for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped]
+        return {
+            "forbidden": len(found),
+            "commands": checked,
+            "bot2 commanded after its death": len(late),
+            "bot2 last commanded (s after its death)": round(max(late), 2) if late else 0.0,
+        }
+    finally:
+        graph.close()
+
+
+def answers_twice(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    graph = Graph(work)
+    log = work / "twice.jsonl"
+    world = World(delay=0.2, twice=True, again=0.0)
+    wire = Wire(graph, world)
+    last = [time.monotonic()]
+    try:
+        graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+
+        def spurious() -> bool:
+            if world.received and time.monotonic() - last[0] > 1.0:
+                last[0] = time.monotonic()
+                idle = [r for r in ROBOTS if world.rules.where[r] != "charging"]
+                if idle:
+                    world.spurious(idle[0] + ".charged", wire.publish)
+            return False
+
+        wire.run(30, spurious)
+        found, checked = forbidden(log_of(log), world.received, world.sent)
+        taken = [r["event"] for r in log_of(log) if not r.get("controllable") and r["event"] in ANSWERS]
+        given = [name for _, name, duplicate in world.sent if not duplicate]
+        return {
+            "forbidden": len(found),
+            "commands": checked,
+            "answers logged that no robot gave": max(0, len(taken) - len(given)),
+        }
+    finally:
+        graph.close()
+
+
+def stop_held(package: tuple[Path, str], work: Path, keep_file: bool) -> dict[str, Any]:
+    from geometry_msgs.msg import Twist
+    from sensor_msgs.msg import LaserScan
+    from std_msgs.msg import Empty, Float32
+    from std_srvs.srv import Trigger
+
+    graph = Graph(work)
+    home = work / f"ros_home_{keep_file}"
+    env = {"ROS_HOME": str(home)}
+    stop_state = ["in_service"]
+
+    def report(request: Any, response: Any) -> Any:  # a stop node that reports while it can
+        response.success, response.message = stop_state[0] != "gone", stop_state[0]
+        return response
+
+    try:
+        graph.node.create_service(Trigger, "/robosc/report/EmergencyStop", report)
+        cmd: list[Any] = []
+        graph.node.create_subscription(Twist, "/cmd_vel", cmd.append, 100)
+        scan = graph.node.create_publisher(LaserScan, "/scan", 10)
+        correction = graph.node.create_publisher(Float32, "/line/correction", 10)
+        stop = graph.node.create_publisher(Empty, "/emergency_stop/stop", 10)
+        message = LaserScan()
+        message.ranges = [5.0] * 360
+        graph.node.create_timer(0.1, lambda: (scan.publish(message), correction.publish(Float32(data=10.0))))
+        node = graph.start(package, "-p", "rate:=20.0", "-p", "seed:=3", env=env)
+        end = time.monotonic() + 20
+        while not any(m.linear.x > 0 for m in cmd) and time.monotonic() < end:
+            graph.spin(0.1)
+        stop.publish(Empty())
+        stop_state[0] = "gone"  # the stop is held; its node no longer answers
+        graph.spin(1.0)
+        node.send_signal(signal.SIGKILL)
+        node.wait(10)
+        if not keep_file:
+            shutil.rmtree(home / "robosc", ignore_errors=True)
+        cmd.clear()
+        graph.start(package, "-p", "rate:=20.0", "-p", "seed:=3", env=env)
+        graph.spin(8.0)
+        return {"moves in 8 s": sum(1 for m in cmd if m.linear.x > 0)}
+    finally:
+        graph.close()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--baseline", default=None)
+    parser.add_argument("--runs", type=int, default=1)
+    args = parser.parse_args()
+    revisions: list[str | None] = [None] + ([args.baseline] if args.baseline else [])
+    with tempfile.TemporaryDirectory(prefix="robosc-faults-") as folder:
+        work = Path(folder)
+        results: dict[str, dict[str, list[Any]]] = {}
+        for revision in revisions:
+            label = "this" if revision is None else revision
+            warehouse = generate("examples/warehouse.rscd", work / f"wh_{label}", revision, work)
+            line = generate("examples/line_follower.rscd", work / f"lf_{label}", revision, work)
+            for run in range(args.runs):
+                tag = f"{label}{run}"
+                scenarios: list[tuple[str, Any, tuple[Any, ...]]] = [
+                    ("killed three ways", killed_three_ways, (warehouse, work / f"k{tag}")),
+                    ("a driver killed", driver_killed, (warehouse, work / f"d{tag}")),
+                    ("answers twice, and spurious", answers_twice, (warehouse, work / f"t{tag}")),
+                    ("stop held, restarted, state file kept", stop_held, (line, work / f"s{tag}", True)),
+                    ("stop held, restarted, state file deleted", stop_held, (line, work / f"m{tag}", False)),
+                ]
+                for name, scenario, arguments in scenarios:
+                    arguments[1].mkdir(parents=True, exist_ok=True)
+                    outcome = scenario(*arguments)
+                    for key, value in outcome.items():
+                        results.setdefault(f"{name}: {key}", {}).setdefault(label, []).append(value)
+                    print(label, name, outcome, flush=True)
+        labels = ["this"] + ([args.baseline] if args.baseline else [])
+        print()
+        print("| ROS 2 | " + " | ".join(f"robosc {label}" for label in labels) + " |")
+        print("|---|" + "---|" * len(labels))
+        for key, by_label in results.items():
+            print(
+                f"| {key} | "
+                + " | ".join(", ".join(str(v) for v in by_label.get(label, [])) for label in labels)
+                + " |"
+            )
+
+
+if __name__ == "__main__":
+    main()
