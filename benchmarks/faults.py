@@ -71,7 +71,12 @@ class Graph:
 
         self.work = work
         self.domain = 160 + os.getpid() % 60
-        self.env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(self.domain)}
+        self.env = {
+            **os.environ,
+            "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+            "ROS_DOMAIN_ID": str(self.domain),
+            "ROS_HOME": str(work / "ros_home"),  # each scenario's own (where 5fa21e9 kept its state file)
+        }
         self.context = rclpy.Context()
         rclpy.init(context=self.context, domain_id=self.domain)
         self.node = rclpy.create_node("faults", context=self.context)
@@ -312,6 +317,7 @@ def main() -> None:
     parser.add_argument("--baseline", default=None)
     parser.add_argument("--runs", type=int, default=1)
     args = parser.parse_args()
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that each scenario's processes are ended
     revisions: list[str | None] = [None] + ([args.baseline] if args.baseline else [])
     with tempfile.TemporaryDirectory(prefix="robosc-faults-") as folder:
         work = Path(folder)

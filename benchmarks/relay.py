@@ -26,6 +26,7 @@ rclpy (the ros2 extra) and, for ROS 1, Debian's rospy for /usr/bin/python3; not 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
@@ -262,7 +263,10 @@ class Middleware:
         self.start([self.python, "-c", REPORTS_ROS2 if ros == 2 else REPORTS_ROS1])
 
     def start(self, command: list[str], env: dict[str, str] | None = None) -> subprocess.Popen[bytes]:
-        process = subprocess.Popen(command, env=env or self.env, stdout=self.log, stderr=self.log)
+        # a session of its own: ended with everything it started (strace's node too), whatever happens
+        process = subprocess.Popen(
+            command, env=env or self.env, stdout=self.log, stderr=self.log, start_new_session=True
+        )
         self.processes.append(process)
         return process
 
@@ -271,11 +275,18 @@ class Middleware:
             if process.poll() is None:
                 process.send_signal(signal.SIGINT)
         for process in self.processes:
-            try:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 process.wait(5)
-            except subprocess.TimeoutExpired:
-                process.kill()
+            kill_group(process)
         self.log.close()
+
+
+def kill_group(process: subprocess.Popen[bytes]) -> None:
+    """End ``process`` and whatever it started (its session)."""
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(process.pid, signal.SIGKILL)
+    with contextlib.suppress(subprocess.TimeoutExpired):
+        process.wait(5)
 
 
 def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> list[str]:
@@ -335,15 +346,13 @@ def round_of(mw: Middleware, build: Any, samples: int, gap: float, strace: bool)
     written_after = storage_writes(node.pid) if not strace else -1
     target = node.pid
     if strace:  # the node is strace's child
-        try:
+        with contextlib.suppress(OSError, IndexError, ValueError):
             target = int(Path(f"/proc/{node.pid}/task/{node.pid}/children").read_text().split()[0])
-        except (OSError, IndexError, ValueError):
-            pass
     os.kill(target, signal.SIGUSR1)  # the node writes its inside times and ends
-    try:
+    with contextlib.suppress(subprocess.TimeoutExpired):
         node.wait(10)
-    except subprocess.TimeoutExpired:
-        node.kill()
+    kill_group(node)
+    kill_group(robot)
     mw.processes.remove(node)
     mw.processes.remove(robot)
     trips = json.loads(trips_file.read_text()) if trips_file.exists() else []
@@ -446,6 +455,7 @@ def main() -> None:
     parser.add_argument("--baseline", default=None, help="also run this revision's generated node, in the same rounds")
     parser.add_argument("--keep", default=None, help="keep the packages and logs in this folder")
     args = parser.parse_args()
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that the middleware's processes are ended
     rows: list[dict[str, Any]] = []
     with tempfile.TemporaryDirectory(prefix="robosc-relay-") as folder:
         if args.keep:

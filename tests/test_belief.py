@@ -176,8 +176,10 @@ def test_a_command_leaves_what_it_changes_unconfirmed_until_it_is_acknowledged()
         node.cycle()
     sent = [name for name, _ in node.published]
     assert sent[0] == "open_door" and not [n for n in sent[1:] if n.endswith("go") or "door" in n], sent
+    assert node.delivery.held(node.outputs["open_door"]) == "the last command on open_door is not acknowledged yet"
     node.acked = True  # only docking, which does not read the door, went out meanwhile
     node.checkpoint()
+    assert node.delivery.held(node.outputs["open_door"]) is None
     assert node.supervisor.snapshot()["automata"]["Door"] == "opening" and "a16_Door" not in node.supervisor.unconfirmed
 
 

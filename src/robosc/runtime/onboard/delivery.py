@@ -64,11 +64,15 @@ class Delivery(object):
 
     def held(self, topic: Any) -> Optional[str]:
         """Why nothing more may be sent on ``topic`` now: a subscriber did not acknowledge what it
-        was sent within ``ack_timeout`` (a driver that died, a link that is down), until it does."""
+        was sent within ``ack_timeout`` (a driver that died, a link that is down), until it does;
+        or (ROS 2) the last command on it that changed the state is not acknowledged yet: one at a
+        time, so that no more than one goes into the void of a driver that has just died."""
         since = self.silent.get(topic.name)
-        if since is None:
-            return None
-        return "%s has not acknowledged a command for %.1f s" % (topic.name, time.monotonic() - since)
+        if since is not None:
+            return "%s has not acknowledged a command for %.1f s" % (topic.name, time.monotonic() - since)
+        if self.node.acknowledges and any(p.topic is topic for p in self.pending):
+            return "the last command on %s is not acknowledged yet" % (topic.name,)
+        return None
 
     def waiting(self) -> Set[str]:
         """The components that are unconfirmed only while a command to them is on its way."""

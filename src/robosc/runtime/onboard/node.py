@@ -587,7 +587,8 @@ class NodeCore(object):
             topic = place
             silent = self.delivery.held(topic)
             if silent is not None:  # what went before it may not have arrived: its robot is held
-                self.warnings("held: %s: %s" % (name, silent), "silent " + name)
+                if topic.name in self.delivery.silent:
+                    self.warnings("held: %s: %s" % (name, silent), "silent " + name)
                 self.refused = silent
                 return False
             if self.params["wait_for_listeners"] and self.listeners(topic) == 0:
