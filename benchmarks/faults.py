@@ -35,29 +35,17 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
-from warehouse_world import ANSWERS, COMMANDS, ROBOTS, World, forbidden, topic  # noqa: E402
+import revision as revisions  # noqa: E402
+from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, forbidden  # noqa: E402
 
 PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
 
 
 def generate(model: str, out: Path, revision: str | None, work: Path) -> tuple[Path, str]:
-    env = dict(os.environ)
-    if revision is not None:
-        tree = work / f"robosc-{revision}"
-        if not tree.exists():
-            archive = subprocess.run(
-                ["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True
-            )
-            tree.mkdir(parents=True)
-            subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
-        env["PYTHONPATH"] = str(tree / "src")
-    subprocess.run(
-        [sys.executable, "-m", "robosc", "generate", "--ros", "2", str(ROOT / model), "-o", str(out)],
-        env=env,
-        check=True,
-        capture_output=True,
-    )
+    """The model's ROS 2 package (this robosc, or ``revision``'s): (folder, module)."""
+    revisions.generate(ROOT / model, 2, out, revision, work)
     module = next(p.name for p in out.iterdir() if (p / "node.py").exists())
     return out, module
 
@@ -114,43 +102,6 @@ class Graph:
         self.log.close()
 
 
-class Wire:
-    """The world on the graph (as tests/test_faults_ros.py puts it there)."""
-
-    def __init__(self, graph: Graph, world: World, robots: tuple[str, ...] = ROBOTS) -> None:
-        from std_msgs.msg import Empty
-        from std_srvs.srv import Trigger
-
-        self.graph, self.world, self.empty = graph, world, Empty
-        self.publishers: dict[str, Any] = {}
-        node = graph.node
-        for event in COMMANDS:
-            if "." not in event or event.partition(".")[0] in robots:
-                node.create_subscription(Empty, "/" + topic(event), lambda _, e=event: world.command(e), 100)
-        for event in ANSWERS:
-            if "." not in event or event.partition(".")[0] in robots:
-                self.publishers[event] = node.create_publisher(Empty, "/" + topic(event), 100)
-        for component in (*robots, "Door"):
-
-            def serve(request: Any, response: Any, component: str = component) -> Any:
-                response.success, response.message = True, world.rules.report(component)
-                return response
-
-            node.create_service(Trigger, "/robosc/report/" + component, serve)
-
-    def publish(self, event: str) -> None:
-        self.publishers[event].publish(self.empty())
-
-    def run(self, seconds: float, until: Any = None) -> bool:
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            self.world.step(self.publish)
-            self.graph.executor.spin_once(timeout_sec=0.01)
-            if until is not None and until():
-                return True
-        return until is None
-
-
 def log_of(path: Path) -> list[dict[str, Any]]:
     return [json.loads(line) for line in path.read_text().splitlines() if line.strip()] if path.exists() else []
 
@@ -163,7 +114,7 @@ def killed_three_ways(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     graph = Graph(work)
     log = work / "killed.jsonl"
     world = World(delay=0.3)
-    wire = Wire(graph, world)
+    wire = Ros2Wire(graph.node, graph.executor, world)
     try:
         node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
         frozen = 0
@@ -197,7 +148,7 @@ def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     graph = Graph(work)
     log = work / "driver.jsonl"
     world = World(delay=0.3, muted=("bot2",))
-    wire = Wire(graph, world, robots=("bot1", "bot3"))
+    wire = Ros2Wire(graph.node, graph.executor, world, robots=("bot1", "bot3"))
     lines: list[dict[str, Any]] = []
     try:
         driver = subprocess.Popen(
@@ -242,7 +193,7 @@ def answers_twice(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     graph = Graph(work)
     log = work / "twice.jsonl"
     world = World(delay=0.2, twice=True, again=0.0)
-    wire = Wire(graph, world)
+    wire = Ros2Wire(graph.node, graph.executor, world)
     last = [time.monotonic()]
     try:
         graph.start(package, *PARAMS, "-p", f"event_log:={log}")

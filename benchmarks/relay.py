@@ -41,6 +41,9 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
+import revision as revisions  # noqa: E402
+
 ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
 MODEL = ROOT / "examples" / "maze_solver.rscd"
 SYNCS = "fsync,fdatasync,syncfs,sync,sync_file_range,msync"
@@ -74,6 +77,16 @@ signal.signal(signal.SIGUSR1, save)
 {run}
 """
 
+# the relay itself, the same on both middlewares: a Twist out for each scan in, timed
+RELAY = """inside = []
+def relay(message):
+    start = time.perf_counter()
+    command = Twist()
+    command.linear.x = 0.3
+    out.publish(command)
+    inside.append(time.perf_counter() - start)
+"""
+
 RELAY_ROS2 = """
 import json, signal, sys, time, rclpy
 from rclpy.qos import QoSProfile, ReliabilityPolicy
@@ -82,14 +95,7 @@ from geometry_msgs.msg import Twist
 rclpy.init()
 node = rclpy.create_node("relay")
 out = node.create_publisher(Twist, "/cmd_vel", QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
-inside = []
-def relay(message):
-    start = time.perf_counter()
-    command = Twist()
-    command.linear.x = 0.3
-    out.publish(command)
-    inside.append(time.perf_counter() - start)
-node.create_subscription(LaserScan, "/scan", relay, QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+{relay}node.create_subscription(LaserScan, "/scan", relay, QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
 def save(*_):
     with open(sys.argv[1], "w") as handle:
         json.dump(inside, handle)
@@ -108,14 +114,7 @@ from sensor_msgs.msg import LaserScan
 from geometry_msgs.msg import Twist
 rospy.init_node("relay", disable_signals=True)
 out = rospy.Publisher("/cmd_vel", Twist, queue_size=10)
-inside = []
-def relay(message):
-    start = time.perf_counter()
-    command = Twist()
-    command.linear.x = 0.3
-    out.publish(command)
-    inside.append(time.perf_counter() - start)
-rospy.Subscriber("/scan", LaserScan, relay, queue_size=10)
+{relay}rospy.Subscriber("/scan", LaserScan, relay, queue_size=10)
 def save(*_):
     with open(sys.argv[1], "w") as handle:
         json.dump(inside, handle)
@@ -217,22 +216,7 @@ def free_port() -> int:
 
 def generate(ros: int, out: Path, revision: str | None, work: Path) -> tuple[Path, str, str]:
     """The maze solver's package (this robosc, or ``revision``'s): (folder, package, module)."""
-    env = dict(os.environ)
-    if revision is not None:
-        tree = work / f"robosc-{revision}"
-        if not tree.exists():
-            archive = subprocess.run(
-                ["git", "-C", str(ROOT), "archive", revision, "src"], capture_output=True, check=True
-            )
-            tree.mkdir(parents=True)
-            subprocess.run(["tar", "-x", "-C", str(tree)], input=archive.stdout, check=True)
-        env["PYTHONPATH"] = str(tree / "src")
-    subprocess.run(
-        [sys.executable, "-m", "robosc", "generate", "--ros", str(ros), str(MODEL), "-o", str(out)],
-        env=env,
-        check=True,
-        capture_output=True,
-    )
+    revisions.generate(MODEL, ros, out, revision, work)
     package = next(p.name for p in (out / ("src" if ros == 1 else "")).iterdir() if (p / "onboard").is_dir())
     module = next(p.stem for p in (out / ("src" if ros == 1 else "") / package).glob("*_supervisor.py"))
     return out, package, module
@@ -311,7 +295,8 @@ def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> l
 
 
 def relay_command(mw: Middleware, out: Path, profile: bool = False) -> list[str]:
-    command = [mw.python, "-c", RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1, str(out)]
+    script = (RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1).replace("{relay}", RELAY)
+    command = [mw.python, "-c", script, str(out)]
     if profile:  # the Fast DDS profile robosc's nodes load (onboard/fastdds.xml)
         xml = ROOT / "src/robosc/runtime/onboard/fastdds.xml"
         command = ["env", f"FASTRTPS_DEFAULT_PROFILES_FILE={xml}", *command]

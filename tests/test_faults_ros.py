@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from ros_support import Ros1, Ros2, build_package
-from warehouse_world import ANSWERS, COMMANDS, ROBOTS, World, forbidden, topic
+from warehouse_world import ROBOTS, Ros2Wire, World, forbidden
 
 MODEL = "examples/warehouse.rscd"
 PARAMS = {"rate": 40.0, "seed": 3}
@@ -32,44 +32,6 @@ def log_of(path: Path) -> list[dict[str, Any]]:
 
 def gos(world: World) -> dict[str, int]:
     return dict((r, sum(1 for _, e in world.received if e == r + ".go")) for r in ROBOTS)
-
-
-class Ros2World:
-    """The world on ROS 2: the commands subscribed, the answers published, the reports served."""
-
-    def __init__(self, ros: Ros2, world: World, robots: tuple[str, ...] = ROBOTS) -> None:
-        from std_msgs.msg import Empty
-        from std_srvs.srv import Trigger
-
-        self.ros, self.world = ros, world
-        self.empty = Empty
-        self.publishers: dict[str, Any] = {}
-        for event in COMMANDS:
-            if event.partition(".")[0] in robots or "." not in event:
-                ros.node.create_subscription(Empty, "/" + topic(event), lambda _, e=event: world.command(e), 100)
-        for event in ANSWERS:
-            if event.partition(".")[0] in robots or "." not in event:
-                self.publishers[event] = ros.node.create_publisher(Empty, "/" + topic(event), 100)
-        for component in (*robots, "Door"):
-
-            def serve(request: Any, response: Any, component: str = component) -> Any:
-                response.success = True
-                response.message = world.rules.report(component)
-                return response
-
-            ros.node.create_service(Trigger, "/robosc/report/" + component, serve)
-
-    def publish(self, event: str) -> None:
-        self.publishers[event].publish(self.empty())
-
-    def run(self, seconds: float, until: Any = None) -> bool:
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            self.world.step(self.publish)
-            self.ros.spin(0.01)
-            if until is not None and until():
-                return True
-        return until is None
 
 
 def start_coordinator(ros2: Ros2, tmp_path: Path, **params: object) -> tuple[Path, Path]:
@@ -104,7 +66,7 @@ def test_ros2_a_coordinator_killed_three_ways_never_commands_what_the_robots_for
     are, goes on (no freeze), and sends nothing the rules forbid."""
     package, log = start_coordinator(ros2, tmp_path)
     world = World(delay=0.3)
-    wire = Ros2World(ros2, world)
+    wire = Ros2Wire(ros2.node, ros2.executor, world)
     node = ros2.start(package, event_log=str(log), **PARAMS)
     kills = 0
     for moment in ("a command just went out", "an answer is due", "robots in the aisle"):
@@ -172,7 +134,7 @@ def test_ros2_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(
     other robots go on."""
     package, log = start_coordinator(ros2, tmp_path)
     world = World(delay=0.3, muted=("bot2",))
-    wire = Ros2World(ros2, world, robots=("bot1", "bot3"))
+    wire = Ros2Wire(ros2.node, ros2.executor, world, robots=("bot1", "bot3"))
     lines: list[dict[str, Any]] = []
     driver = ros2.processes.start("bot2_driver", [sys.executable, "-c", DRIVER, str(ros2.domain)], ros2.env)
     reader = subprocess.Popen(["tail", "-F", "-n", "+1", str(tmp_path / "bot2_driver.log")], stdout=subprocess.PIPE, text=True)
@@ -227,7 +189,7 @@ def test_ros2_duplicated_and_impossible_answers_never_move_the_belief(ros2: Ros2
 
     package, log = start_coordinator(ros2, tmp_path)
     world = World(delay=0.2, twice=True, again=0.0)
-    wire = Ros2World(ros2, world)
+    wire = Ros2Wire(ros2.node, ros2.executor, world)
     health = ros2.record(String, "/health")
     ros2.start(package, event_log=str(log), **PARAMS)
     last = [time.monotonic()]

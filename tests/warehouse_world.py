@@ -166,3 +166,41 @@ def forbidden(log, received, sent, start=None):
                 found += [f"{when:.3f} {event}: {v}" for v in rules.violations(event)]
         rules.apply(event)
     return found, checked
+
+
+class Ros2Wire:
+    """The world on a ROS 2 graph, through ``node`` (rclpy, spun by ``executor``): the commands
+    subscribed, the answers published, the drivers' reports served (``robots`` and the door)."""
+
+    def __init__(self, node, executor, world, robots=ROBOTS):
+        from std_msgs.msg import Empty
+        from std_srvs.srv import Trigger
+
+        self.executor, self.world, self.empty = executor, world, Empty
+        self.publishers = {}
+        for event in COMMANDS:
+            if "." not in event or event.partition(".")[0] in robots:
+                node.create_subscription(Empty, "/" + topic(event), lambda _, e=event: world.command(e), 100)
+        for event in ANSWERS:
+            if "." not in event or event.partition(".")[0] in robots:
+                self.publishers[event] = node.create_publisher(Empty, "/" + topic(event), 100)
+        for component in (*robots, "Door"):
+
+            def serve(request, response, component=component):
+                response.success, response.message = True, world.rules.report(component)
+                return response
+
+            node.create_service(Trigger, "/robosc/report/" + component, serve)
+
+    def publish(self, event):
+        self.publishers[event].publish(self.empty())
+
+    def run(self, seconds, until=None):
+        """Send the answers due and spin, for ``seconds`` or until ``until()``; whether it came."""
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.world.step(self.publish)
+            self.executor.spin_once(timeout_sec=0.01)
+            if until is not None and until():
+                return True
+        return until is None
