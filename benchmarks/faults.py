@@ -1,4 +1,4 @@
-"""The fault table of issue 29 on real ROS 2, for this robosc and a baseline revision, side by side:
+"""The fault table of issue 29 on real ROS 2 and ROS 1, for this robosc and a baseline revision, side by side:
 the warehouse's coordinator (its default parameters) behind stand-ins for the robots and the
 door that answer as the model says and report where they are when asked
 (tests/warehouse_world.py), every command it sent replayed through the warehouse's rules
@@ -15,7 +15,10 @@ against where the robots really were.
 * **the stop held, restarted**: the line follower stopped, killed, started again with its
   state file kept, and with it deleted: move commands in 8 s.
 
-    python benchmarks/faults.py [--baseline 5fa21e9] [--runs 1]
+On ROS 1 (rosmaster, Debian's rospy) the coordinator is killed three ways and given every answer
+twice as on ROS 2.
+
+    python benchmarks/faults.py [--baseline 5fa21e9] [--runs 1] [--no-ros1] [--only WORD ...]
 """
 
 from __future__ import annotations
@@ -263,10 +266,137 @@ def stop_held(package: tuple[Path, str], work: Path, keep_file: bool) -> dict[st
         graph.close()
 
 
+# ---- ROS 1 ----------------------------------------------------------------------------------------
+ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
+TESTS = (ROOT / "tests" / "test_faults_ros.py").read_text()
+ROS1_WORLD = TESTS.split('ROS1_WORLD = """', 1)[1].split('"""', 1)[0]
+ROS1_KILLS = TESTS.split("def test_ros1_a_coordinator_killed_three_ways", 1)[1].split('+ """', 1)[1].split('"""', 1)[0]
+ROS1_HELPERS = ROOT / "tests" / "ros1_client.py"
+
+
+class Master:
+    """A rosmaster on 127.0.0.1 of its own, and the processes started on it."""
+
+    def __init__(self, work: Path) -> None:
+        import socket
+
+        with socket.socket() as probe:
+            probe.bind(("127.0.0.1", 0))
+            port = probe.getsockname()[1]
+        self.env = {
+            **{k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "PYTHON"))},
+            "ROS_MASTER_URI": f"http://127.0.0.1:{port}",
+            "ROS_HOSTNAME": "127.0.0.1",
+            "ROS_HOME": str(work / "ros_home"),
+        }
+        self.log = open(work / "ros1.log", "ab")  # noqa: SIM115
+        self.processes: list[subprocess.Popen[Any]] = []
+        self.start([ROS1_PYTHON, "/usr/bin/rosmaster", "--core", "-p", str(port)])
+        time.sleep(1.5)
+
+    def start(self, command: list[str], **kwargs: Any) -> subprocess.Popen[Any]:
+        process = subprocess.Popen(command, env=self.env, stdout=self.log, stderr=self.log, **kwargs)
+        self.processes.append(process)
+        return process
+
+    def node(self, package: Path, log: Path) -> subprocess.Popen[Any]:
+        script = next((package / "scripts").glob("*_node"))
+        return self.start([ROS1_PYTHON, str(script), "_rate:=40.0", "_seed:=3", f"_event_log:={log}"])
+
+    def close(self) -> None:
+        for process in reversed(self.processes):
+            if process.poll() is None:
+                process.kill()
+                process.wait(10)
+        self.log.close()
+
+
+def ros1_world(master: Master, work: Path, twice: bool, body: str) -> subprocess.Popen[Any]:
+    control = work / "control"
+    script = (
+        f"import sys\nsys.path.insert(0, {str(ROS1_HELPERS.parent)!r})\nfrom ros1_client import *\n"
+        + ROS1_WORLD.format(tests=str(ROOT / "tests"), twice=twice, control=str(control))
+        + body
+    )
+    return master.start([ROS1_PYTHON, "-c", script], stdout=subprocess.PIPE, text=True)
+
+
+def ros1_result(world: subprocess.Popen[Any]) -> dict[str, Any]:
+    out, _ = world.communicate(timeout=400)
+    lines = [line for line in (out or "").splitlines() if line.startswith("{")]
+    return json.loads(lines[-1]) if lines else {"received": [], "sent": []}
+
+
+def ros1_killed_three_ways(package: Path, work: Path) -> dict[str, Any]:
+    master = Master(work)
+    log = work / "killed.jsonl"
+    try:
+        node = master.node(package, log)
+        body = ROS1_KILLS.replace(
+            'assert run(60, lambda: sum(gos().values()) >= done_gos + 6), ("no progress after", moment, gos())',
+            "frozen.append(not run(20, lambda: sum(gos().values()) >= done_gos + 6))",
+        )
+        body = "frozen = []\n" + body.replace(
+            "done(json.loads(world.dump()))",
+            "result = json.loads(world.dump()); result['frozen'] = sum(frozen); done(result)",
+        )
+        body = body.replace('assert run(60, condition), ("never", moment, gos())', "run(60, condition)")
+        world = ros1_world(master, work, False, body)
+        control = work / "control"
+        seen = 0
+        while world.poll() is None:
+            kills = control.read_text().count("kill") if control.exists() else 0
+            if kills > seen:
+                seen = kills
+                node.send_signal(signal.SIGKILL)
+                node.wait(10)
+                time.sleep(1.0)
+                node = master.node(package, log)
+            time.sleep(0.005)
+        result = ros1_result(world)
+        found, checked = forbidden(log_of(log), result["received"], result["sent"])
+        return {"forbidden": len(found), "commands": checked, "frozen restarts": result.get("frozen", "?")}
+    finally:
+        master.close()
+
+
+def ros1_answers_twice(package: Path, work: Path) -> dict[str, Any]:
+    master = Master(work)
+    log = work / "twice.jsonl"
+    try:
+        master.node(package, log)
+        body = """
+last = [time.time()]
+def spurious():
+    if world.received and time.time() - last[0] > 1.0:
+        last[0] = time.time()
+        idle = [r for r in ROBOTS if world.rules.where[r] != "charging"]
+        if idle:
+            world.spurious(idle[0] + ".charged", publish)
+    return False
+run(30, spurious)
+with lock:
+    done(json.loads(world.dump()))
+"""
+        result = ros1_result(ros1_world(master, work, True, body))
+        found, checked = forbidden(log_of(log), result["received"], result["sent"])
+        taken = [r["event"] for r in log_of(log) if not r.get("controllable") and r["event"] in ANSWERS]
+        given = [name for _, name, duplicate in result["sent"] if not duplicate]
+        return {
+            "forbidden": len(found),
+            "commands": checked,
+            "answers logged that no robot gave": max(0, len(taken) - len(given)),
+        }
+    finally:
+        master.close()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--baseline", default=None)
     parser.add_argument("--runs", type=int, default=1)
+    parser.add_argument("--no-ros1", dest="ros1", action="store_false", help="ROS 2 only")
+    parser.add_argument("--only", nargs="*", help="only the scenarios whose names hold one of these words")
     args = parser.parse_args()
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that each scenario's processes are ended
     revisions: list[str | None] = [None] + ([args.baseline] if args.baseline else [])
@@ -277,6 +407,7 @@ def main() -> None:
             label = "this" if revision is None else revision
             warehouse = generate("examples/warehouse.rscd", work / f"wh_{label}", revision, work)
             line = generate("examples/line_follower.rscd", work / f"lf_{label}", revision, work)
+            warehouse1 = revisions.generate(ROOT / "examples/warehouse.rscd", 1, work / f"wh1_{label}", revision, work)
             for run in range(args.runs):
                 tag = f"{label}{run}"
                 scenarios: list[tuple[str, Any, tuple[Any, ...]]] = [
@@ -286,6 +417,13 @@ def main() -> None:
                     ("stop held, restarted, state file kept", stop_held, (line, work / f"s{tag}", True)),
                     ("stop held, restarted, state file deleted", stop_held, (line, work / f"m{tag}", False)),
                 ]
+                if Path(ROS1_PYTHON).exists() and args.ros1:
+                    scenarios += [
+                        ("ROS 1: killed three ways", ros1_killed_three_ways, (warehouse1, work / f"k1{tag}")),
+                        ("ROS 1: answers twice, and spurious", ros1_answers_twice, (warehouse1, work / f"t1{tag}")),
+                    ]
+                if args.only:
+                    scenarios = [x for x in scenarios if any(word in x[0] for word in args.only)]
                 for name, scenario, arguments in scenarios:
                     arguments[1].mkdir(parents=True, exist_ok=True)
                     outcome = scenario(*arguments)
@@ -294,7 +432,7 @@ def main() -> None:
                     print(label, name, outcome, flush=True)
         labels = ["this"] + ([args.baseline] if args.baseline else [])
         print()
-        print("| ROS 2 | " + " | ".join(f"robosc {label}" for label in labels) + " |")
+        print("| fault | " + " | ".join(f"robosc {label}" for label in labels) + " |")
         print("|---|" + "---|" * len(labels))
         for key, by_label in results.items():
             print(

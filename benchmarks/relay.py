@@ -2,7 +2,8 @@
 rospy), in one run: message in -> command out.
 
 The maze solver's node, with its default parameters but ``tick_on_message`` (a cycle right
-after each message, as a relay does; the default waits for the 10 Hz timer), and a bare relay
+after each message, as a relay does; the default waits for the 10 Hz timer) and ``rate`` 0.01
+(so that its timer sends no command of its own, which would reach the robot early), and a bare relay
 written for the same middleware (a scan in, a Twist out, nothing checked), take turns behind
 one robot process that sends a scan, waits for the command, and sends the next after a gap.
 Printed side by side, in microseconds, median (p99):
@@ -47,6 +48,10 @@ import revision as revisions  # noqa: E402
 ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
 MODEL = ROOT / "examples" / "maze_solver.rscd"
 SYNCS = "fsync,fdatasync,syncfs,sync,sync_file_range,msync"
+# the node's timer, so slow that it never sends a command of its own during a run: every command
+# the robot gets is the one its scan caused (at the default 10 Hz the timer's own commands would
+# arrive early and shorten the round trips measured)
+RATE = 0.01
 
 # the generated node, its receive and publish timed (patched before the node is made)
 NODE = """
@@ -276,14 +281,14 @@ def kill_group(process: subprocess.Popen[bytes]) -> None:
 def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> list[str]:
     folder, name, module = package
     if mw.ros == 2:
-        params = ["--ros-args", "-p", "tick_on_message:=true"]
+        params = ["--ros-args", "-p", "tick_on_message:=true", "-p", f"rate:={RATE}"]
         run = f'adapter.main(Robot, "controller", ["bench", *{params!r}])'
         return [
             mw.python,
             "-c",
             NODE.format(path=str(folder), setup="", package=name, module=module, adapter="ros2", out=str(out), run=run),
         ]
-    setup = "sys.argv[1:] = ['__name:=bench', '_tick_on_message:=true']"
+    setup = f"sys.argv[1:] = ['__name:=bench', '_tick_on_message:=true', '_rate:={RATE}']"
     run = 'adapter.main(Robot, "controller", "bench")'
     return [
         mw.python,

@@ -310,6 +310,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     assert ros2.spin_until(lambda: _state(states).get("Distance.front") == "no_wall_front", 5)
     # (no_wall_front is also where it starts: the scan has come when the node stops holding)
     assert ros2.spin_until(lambda: json.loads(states[-1].data)["health"]["held"] is False, 5), states[-1].data
+    assert ros2.spin_until(lambda: _confirmed(states), 10)  # the platform's driver said where it is
     to_controller.clear()
     move.publish(forward)
     assert ros2.spin_until(lambda: bool(robot_moves), 5), (

@@ -527,10 +527,15 @@ class _Planner:
     def answers(self, event: Event) -> tuple[tuple[str, tuple[str, ...]], ...] | None:
         """Where the components answer the uncontrollable ``event`` with a transition the user
         wrote (not the self-loop responsiveness adds): (field, locations) per component automaton
-        taking it; None when one of them answers it everywhere (it is always taken)."""
+        taking it; None when one of them answers it everywhere, or it also moves a communication's
+        plant (a service's response): then it is always taken."""
         out = []
         for automaton in self.network.automata:
-            if event not in automaton.alphabet or automaton.kind is not AutomatonKind.COMPONENT:
+            if event not in automaton.alphabet:
+                continue
+            if automaton.kind is not AutomatonKind.COMPONENT:
+                if len(automaton.locations) > 1:
+                    return None  # it moves a service's or an action's plant: always taken
                 continue
             component = automaton.component
             assert component is not None and component.automaton is not None
