@@ -44,8 +44,8 @@ def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
 
 @pytest.fixture(autouse=True)
 def _ros_home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Every test has a ROS home of its own: the nodes it starts persist their state there
-    (never in the user's ~/.ros), and no test resumes another's."""
+    """Every test has a ROS home of its own: the nodes it starts log there (never in the user's
+    ~/.ros), and no test sees another's files."""
     monkeypatch.setenv("ROS_HOME", str(tmp_path / "ros_home"))
 
 

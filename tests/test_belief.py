@@ -350,3 +350,13 @@ def test_a_command_whose_data_depends_on_what_is_unconfirmed_is_not_sent() -> No
     assert robot.perform("switch") is False and sent == []  # ... but it would send true or false
     assert robot.confirm("Light", "lit") is None
     assert robot.perform("switch") is True and sent == [False]
+
+
+def test_housekeeping_goes_on_when_the_cycle_is_slow() -> None:
+    """A node whose rate is slower than HOUSEKEEPING still asks for reports and follows its commands
+    (the adapters run housekeeping() on a timer of its own)."""
+    node = Node("examples/line_follower.rscd", rate=0.01, report_interval=0.01)
+    node.answers["EmergencyStop"] = "in_service"
+    node.housekeeping()
+    assert "EmergencyStop" not in node.supervisor.unsure()
+    assert node.health_reports()[-1]["unconfirmed"].keys() == {"LineDetector", "Lidar"}

@@ -80,7 +80,7 @@ class Graph:
                 **os.environ,
                 "ROS_DOMAIN_ID": str(self.domain),
                 "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
-                "ROS_HOME": str(folder / "ros_home"),  # the controllers' persisted states: this run's own
+                "ROS_HOME": str(folder / "ros_home"),  # the controllers' logs: this run's own
                 "PYTHONUNBUFFERED": "1",
             }
 

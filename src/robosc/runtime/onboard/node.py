@@ -38,6 +38,7 @@ VIEW_EVENTS_TOPIC = "live_view/events"
 HEARTBEAT = '{"heartbeat": true}'  # on live_view/events every HEARTBEAT_SECONDS while watched
 HEARTBEAT_SECONDS = 0.5
 REPORT_PREFIX = "robosc/report/"  # + a component's name: the std_srvs/Trigger service its driver offers
+HOUSEKEEPING = 0.1  # seconds: at least this often, acknowledgements, time-outs and reports are looked at
 
 
 def default_name(robot_class: Any) -> str:
@@ -211,11 +212,9 @@ class NodeCore(object):
         mode: str,
         parameters: Dict[str, Any],
         log: Callable[[str, str], None],
-        full_name: str = "",
     ) -> None:
         """``parameters``: name -> value as given (missing: default); bad values are
-        refused with a log line and replaced by the default. ``full_name``: the node's name
-        with its namespace (where its state is persisted by default)."""
+        refused with a log line and replaced by the default."""
         if mode not in MODES:
             raise ValueError("mode must be controller or supervisor")
         self.mode = mode
@@ -486,15 +485,24 @@ class NodeCore(object):
         self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(record, sort_keys=True, default=str))
 
     # ---- the cycle -----------------------------------------------------------------------
-    def cycle(self) -> None:
-        """The timer: what is overdue, the reports to ask for, a controller's tick, then the state
-        if asked for."""
-        self.cycles += 1
+    def housekeep(self) -> None:
+        """The commands on their way, the answers overdue, the reports to ask for: every cycle, and
+        at least every HOUSEKEEPING seconds (the adapters add a timer where ``rate`` is slower)."""
         now = time.time()
         self.delivery.follow()
         self.overdue(now)
         if self.supervisor.unconfirmed:
             self.ask_reports(now)
+
+    def housekeeping(self) -> None:
+        """The timer that keeps up housekeeping where the cycle is slower than HOUSEKEEPING."""
+        self.housekeep()
+        self.checkpoint()
+
+    def cycle(self) -> None:
+        """The timer: housekeeping, a controller's tick, then the state if asked for."""
+        self.cycles += 1
+        self.housekeep()
         if self.mode == "controller":
             try:
                 self.supervisor.tick()

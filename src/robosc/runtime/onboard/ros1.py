@@ -26,6 +26,7 @@ from .messages import MissingType, load
 from .node import (
     BLOCKED_TOPIC,
     HEALTH_TOPIC,
+    HOUSEKEEPING,
     PARAMETERS,
     REPORT_PREFIX,
     STATE_TOPIC,
@@ -53,11 +54,13 @@ class SupervisorNode(NodeCore):
                 given[p.name] = rospy.get_param("~" + p.name, p.default)
             except Exception as error:  # an unreadable parameter server entry
                 _log("error", "parameter %s unreadable: %s" % (p.name, error))
-        self.setup(robot_class, mode, given, _log, rospy.get_name())
+        self.setup(robot_class, mode, given, _log)
         self.lock = self.supervisor.lock
         self._load_types()
         self.start_outputs(robot_class, rospy.get_time, self._create)
         self.cycle_timer = rospy.Timer(rospy.Duration(1.0 / self.params["rate"]), self.locked(self.cycle))
+        if 1.0 / self.params["rate"] > HOUSEKEEPING:
+            self.housekeeping_timer = rospy.Timer(rospy.Duration(HOUSEKEEPING), self.locked(self.housekept))
 
     def _load_types(self) -> None:
         for topic in list(self.inputs.values()) + list(self.outputs.values()):
@@ -127,6 +130,9 @@ class SupervisorNode(NodeCore):
 
     def cycle(self, _event: Any = None) -> None:
         NodeCore.cycle(self)
+
+    def housekept(self, _event: Any = None) -> None:
+        NodeCore.housekeeping(self)
 
     def stamped(self, topic: Any, message: Any) -> None:
         """A message from the robot, with its header's stamp when it has one (ROS 1 gives no

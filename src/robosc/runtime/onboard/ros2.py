@@ -41,6 +41,7 @@ from .messages import MissingType, load
 from .node import (
     BLOCKED_TOPIC,
     HEALTH_TOPIC,
+    HOUSEKEEPING,
     PARAMETERS,
     REPORT_PREFIX,
     STATE_TOPIC,
@@ -72,12 +73,14 @@ class SupervisorNode(Node, NodeCore):
         for p in PARAMETERS:
             descriptor = ParameterDescriptor(description=p.description, read_only=True, dynamic_typing=True)
             given[p.name] = self.declare_parameter(p.name, p.default, descriptor).value
-        self.setup(robot_class, mode, given, self._log, self.get_fully_qualified_name())
+        self.setup(robot_class, mode, given, self._log)
         self.lock = self.supervisor.lock
         self.spent: List[Any] = []  # timers of finished waits, destroyed at the next cycle
         self._load_types()
         self.start_outputs(robot_class, self._now, self._create)
         self.cycle_timer = self.create_timer(1.0 / self.params["rate"], self.callback(self.cycle))
+        if 1.0 / self.params["rate"] > HOUSEKEEPING:
+            self.housekeeping_timer = self.create_timer(HOUSEKEEPING, self.callback(self.housekeeping))
 
     # ---- set-up ----------------------------------------------------------------------------
     def _now(self) -> float:
