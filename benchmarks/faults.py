@@ -295,7 +295,8 @@ class Master:
         time.sleep(1.5)
 
     def start(self, command: list[str], **kwargs: Any) -> subprocess.Popen[Any]:
-        process = subprocess.Popen(command, env=self.env, stdout=self.log, stderr=self.log, **kwargs)
+        options: dict[str, Any] = {"stdout": self.log, "stderr": self.log, **kwargs}
+        process = subprocess.Popen(command, env=self.env, **options)
         self.processes.append(process)
         return process
 
@@ -399,11 +400,11 @@ def main() -> None:
     parser.add_argument("--only", nargs="*", help="only the scenarios whose names hold one of these words")
     args = parser.parse_args()
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that each scenario's processes are ended
-    revisions: list[str | None] = [None] + ([args.baseline] if args.baseline else [])
+    runs: list[str | None] = [None] + ([args.baseline] if args.baseline else [])
     with tempfile.TemporaryDirectory(prefix="robosc-faults-") as folder:
         work = Path(folder)
         results: dict[str, dict[str, list[Any]]] = {}
-        for revision in revisions:
+        for revision in runs:
             label = "this" if revision is None else revision
             warehouse = generate("examples/warehouse.rscd", work / f"wh_{label}", revision, work)
             line = generate("examples/line_follower.rscd", work / f"lf_{label}", revision, work)

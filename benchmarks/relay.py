@@ -2,8 +2,7 @@
 rospy), in one run: message in -> command out.
 
 The maze solver's node, with its default parameters but ``tick_on_message`` (a cycle right
-after each message, as a relay does; the default waits for the 10 Hz timer) and ``rate`` 0.01
-(so that its timer sends no command of its own, which would reach the robot early), and a bare relay
+after each message, as a relay does; the default waits for the 10 Hz timer), and a bare relay
 written for the same middleware (a scan in, a Twist out, nothing checked), take turns behind
 one robot process that sends a scan, waits for the command, and sends the next after a gap.
 Printed side by side, in microseconds, median (p99):
@@ -18,7 +17,7 @@ with every message (as a robot's does while it drives). Then, for each, what it 
 own, where strace is installed) and the bytes it made the kernel write to storage
 (``/proc/PID/io``), with the writes per hour of a line follower deciding 20 times a second.
 
-    python benchmarks/relay.py [--samples 400] [--ros 2 1] [--baseline 5fa21e9]
+    python benchmarks/relay.py [--samples 400] [--ros 2 1] [--baseline 5fa21e9] [--rate 0.01]
 
 With ``--baseline REV`` that revision's generated node runs in the same rounds. Needs robosc,
 rclpy (the ros2 extra) and, for ROS 1, Debian's rospy for /usr/bin/python3; not the test extras.
@@ -48,10 +47,10 @@ import revision as revisions  # noqa: E402
 ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
 MODEL = ROOT / "examples" / "maze_solver.rscd"
 SYNCS = "fsync,fdatasync,syncfs,sync,sync_file_range,msync"
-# the node's timer, so slow that it never sends a command of its own during a run: every command
-# the robot gets is the one its scan caused (at the default 10 Hz the timer's own commands would
-# arrive early and shorten the round trips measured)
-RATE = 0.01
+# the node's cycles per second: its default; --rate 0.01 makes its timer so slow that it never
+# sends a command of its own during a run (at 10 Hz the timer's own commands may reach the robot
+# before the one its scan caused, and shorten the round trips measured)
+RATE = [10.0]
 
 # the generated node, its receive and publish timed (patched before the node is made)
 NODE = """
@@ -281,14 +280,14 @@ def kill_group(process: subprocess.Popen[bytes]) -> None:
 def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> list[str]:
     folder, name, module = package
     if mw.ros == 2:
-        params = ["--ros-args", "-p", "tick_on_message:=true", "-p", f"rate:={RATE}"]
+        params = ["--ros-args", "-p", "tick_on_message:=true", "-p", f"rate:={RATE[0]}"]
         run = f'adapter.main(Robot, "controller", ["bench", *{params!r}])'
         return [
             mw.python,
             "-c",
             NODE.format(path=str(folder), setup="", package=name, module=module, adapter="ros2", out=str(out), run=run),
         ]
-    setup = f"sys.argv[1:] = ['__name:=bench', '_tick_on_message:=true', '_rate:={RATE}']"
+    setup = f"sys.argv[1:] = ['__name:=bench', '_tick_on_message:=true', '_rate:={RATE[0]}']"
     run = 'adapter.main(Robot, "controller", "bench")'
     return [
         mw.python,
@@ -444,8 +443,12 @@ def main() -> None:
     parser.add_argument("--ros", type=int, nargs="+", default=[2, 1], choices=[1, 2])
     parser.add_argument("--baseline", default=None, help="also run this revision's generated node, in the same rounds")
     parser.add_argument("--keep", default=None, help="keep the packages and logs in this folder")
+    parser.add_argument(
+        "--rate", type=float, default=10.0, help="the node's rate (0.01: its timer sends nothing during a run)"
+    )
     args = parser.parse_args()
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that the middleware's processes are ended
+    RATE[0] = args.rate
     rows: list[dict[str, Any]] = []
     with tempfile.TemporaryDirectory(prefix="robosc-relay-") as folder:
         if args.keep:

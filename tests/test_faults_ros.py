@@ -3,10 +3,11 @@ rospy), issue 29: the warehouse's coordinator with default parameters, the robot
 as stand-ins that answer as the model says (tests/warehouse_world.py) and report where they are
 when asked. Every command the coordinator sent is replayed, in the order it decided them,
 through the warehouse's rules against where the robots really were: none may be forbidden.
-Each test fails on the behaviour of 5fa21e9, where a restarted coordinator trusted its state
-file (and froze when an answer came while it was down, or believed a command delivered that
-was not), a dead subscriber counted as a listener for 20 s, and a late duplicate answer moved
-the belief."""
+The same scenarios run against 5fa21e9's coordinator in benchmarks/faults.py: there a
+restarted coordinator trusted its state file and froze when an answer came while it was down,
+commands went to a dead driver's subscriber (which DDS keeps matched for 20 s) and others were
+sent into cells it still held, and duplicate and impossible answers were written to the event
+log as events."""
 
 from __future__ import annotations
 
