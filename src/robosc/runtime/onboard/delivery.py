@@ -20,7 +20,7 @@ from __future__ import absolute_import, annotations
 import time
 from typing import Any, Dict, List, Optional, Set, Tuple
 
-from .belief import Unknown
+from .belief import Unknown, distinct
 
 
 class Pending(object):
@@ -162,4 +162,4 @@ def _either(old: Optional[Tuple[Any, ...]], new: Optional[Tuple[Any, ...]]) -> O
     been (``old``), or where it may be after (``new``); None (any value) where either is."""
     if old is None or new is None:
         return None
-    return tuple(old) + tuple(v for v in new if not any(type(v) is type(o) and v == o for o in old))
+    return distinct(list(old) + list(new))

@@ -810,13 +810,9 @@ class Supervisor(object):
                 return self._unreadable(event, error)
         if self.unconfirmed:
             return self._deliver_unsure(event, value, stamp)
-        if not self._expected()[self.EXPECTED_AT[name]]:
-            return self._ignore(name, "not expected now")
-        answers = self.ANSWERS.get(name)
-        if answers is not None:
-            why = self._unanswered(answers, stamp)
-            if why is not None:
-                return self._ignore(name, why)
+        why = self._not_taken(name, stamp)
+        if why is not None:
+            return self.ignore(name, why)
         saved = type(self).GETTER(self)
         try:
             getattr(self, event.method)(value)
@@ -826,6 +822,14 @@ class Supervisor(object):
             return self._unreadable(event, error)
         self._delivered(event, value, saved, stamp)
         return True
+
+    def _not_taken(self, name: str, stamp: Optional[float]) -> Optional[str]:
+        """Why the uncontrollable event ``name`` (stamped ``stamp``) is not taken here, or None:
+        the plant cannot take it, or no component that answers it waits for it."""
+        if not self._expected()[self.EXPECTED_AT[name]]:
+            return "not expected now"
+        answers = self.ANSWERS.get(name)
+        return self._unanswered(answers, stamp) if answers is not None else None
 
     def _unanswered(self, answers: Tuple[Tuple[str, Tuple[str, ...]], ...], stamp: Optional[float]) -> Optional[str]:
         """Why no component takes an answer now (None: one does): none is where it answers it,
@@ -866,9 +870,6 @@ class Supervisor(object):
 
     def ignore(self, name: str, why: str) -> bool:
         """``name`` (an event, or a topic's message) came and is not taken: counted, reported."""
-        return self._ignore(name, why)
-
-    def _ignore(self, name: str, why: str) -> bool:
         self.ignored[name] = self.ignored.get(name, 0) + 1
         self.health_changes += 1
         self.last_ignored = why
@@ -880,14 +881,9 @@ class Supervisor(object):
         completion where it can be, ignored (nothing changes) in the others, which therefore
         stay possible: an answer may be spurious or a duplicate, so it tells where a component
         is only where every place it may be leads to the same one."""
-        answers = self.ANSWERS.get(event.name)
 
         def run() -> Any:
-            why: Optional[str] = None
-            if not self._expected()[self.EXPECTED_AT[event.name]]:
-                why = "not expected now"
-            elif answers is not None:
-                why = self._unanswered(answers, stamp)
+            why = self._not_taken(event.name, stamp)
             state = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
             if why is not None:
                 return why, state
@@ -906,12 +902,12 @@ class Supervisor(object):
                 "%s came while too much was unconfirmed to follow it (%s)"
                 % (event.name, self.LABELS.get(too_many.field, too_many.field)),
             )
-            return self._ignore(event.name, "too much is unconfirmed to tell what it changes")
+            return self.ignore(event.name, "too much is unconfirmed to tell what it changes")
         unreadable = [result for _, result in outcomes if isinstance(result, Unreadable)]
         if unreadable:
             return self._unreadable(event, unreadable[0])
         if all(why is not None for _, (why, _) in outcomes):
-            return self._ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
+            return self.ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
         self._settle_fields([state for _, (_, state) in outcomes])
         self._delivered(event, value, saved, stamp)
         return True
