@@ -61,10 +61,11 @@ class Node(FakeNode):
     def acknowledged(self, topic: Any) -> bool:
         return self.acked
 
-    def ask_report(self, component: str, client: Any) -> None:
+    def ask_report(self, component: str, client: Any) -> bool:
         self.asked_for.append(component)
         if component in self.answers:
             self.report(component, True, self.answers[component])
+        return True
 
     def health_reports(self) -> list[dict[str, Any]]:
         return [json.loads(text) for name, text in self.texts if name == "health"]
@@ -360,3 +361,23 @@ def test_housekeeping_goes_on_when_the_cycle_is_slow() -> None:
     node.housekeeping()
     assert "EmergencyStop" not in node.supervisor.unsure()
     assert node.health_reports()[-1]["unconfirmed"].keys() == {"LineDetector", "Lidar"}
+
+
+def test_a_driver_whose_report_service_is_not_there_yet_is_asked_at_the_next_look() -> None:
+    node = Node("examples/line_follower.rscd", report_interval=60.0)
+    ready = [False]
+
+    def ask_report(component: str, client: Any) -> bool:  # the middleware: no server yet, then one
+        node.asked_for.append(component)
+        if not ready[0]:
+            return False
+        node.report(component, True, "in_service")
+        return True
+
+    node.ask_report = ask_report  # type: ignore[method-assign]
+    node.housekeeping()
+    node.housekeeping()
+    assert node.asked_for.count("EmergencyStop") == 2  # not a minute later: it could not ask yet
+    ready[0] = True
+    node.housekeeping()
+    assert "EmergencyStop" not in node.supervisor.unsure()

@@ -313,6 +313,7 @@ controller_light = rospy.ServiceProxy("/robosc/controller/light/set", SetBool)
 controller_arm = actionlib.SimpleActionClient("/robosc/controller/arm/work", TestAction)
 rospy.wait_for_service("/robosc/controller/light/set", 10)
 assert controller_arm.wait_for_server(rospy.Duration(10))
+assert wait_for(lambda: ((state.last() or {}).get("health") or {}).get("unconfirmed") == {}, 10)  # reported
 report = {}
 # the light is dark: work needs Light.lit, so the goal is blocked
 controller_arm.send_goal(TestGoal(goal=7))

@@ -305,19 +305,21 @@ class NodeCore(object):
     # ---- confirming where the robots are ---------------------------------------------------
     def ask_reports(self, now: float) -> None:
         """Ask the driver of each unconfirmed component (but those waiting for an acknowledgement)
-        for its state, every ``report_interval`` seconds."""
+        for its state: as soon as its report service is there, then every ``report_interval``
+        seconds (a request that could not go out, no server yet, is tried at the next look)."""
         waiting = self.delivery.waiting()
         for component in self.supervisor.unsure():
             if component in waiting:
                 continue
             if now - self.asked.get(component, -1e18) < self.params["report_interval"]:
                 continue
-            self.asked[component] = now
             client = self.report_clients.get(component)
             if client is not None:
                 try:
-                    self.ask_report(component, client)
+                    if self.ask_report(component, client):
+                        self.asked[component] = now
                 except Exception as error:
+                    self.asked[component] = now
                     self.warnings("cannot ask %s for its state: %s" % (component, error), "ask " + component)
 
     def report(self, component: str, success: bool, message: str) -> None:
@@ -734,9 +736,10 @@ class NodeCore(object):
         """Whether every subscriber of ``topic`` acknowledged all it was sent (where ``acknowledges``)."""
         return True
 
-    def ask_report(self, component: str, client: Any) -> None:
+    def ask_report(self, component: str, client: Any) -> bool:
         """Ask the driver of ``component`` (through ``client``) for its state; its answer comes back
-        through :meth:`report`."""
+        through :meth:`report`. False when the request could not go out (no server yet)."""
+        return False
 
     def subscribers(self, publisher: Any) -> int:
         """How many subscribers ``publisher`` (one the adapter made) has now."""

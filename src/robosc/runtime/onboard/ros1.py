@@ -97,6 +97,7 @@ class SupervisorNode(NodeCore):
         for call in self.action_calls:
             call.client = actionlib.SimpleActionClient(call.name, call.type)
         self.trigger = load("std_srvs", "srv", "Trigger")
+        self.asking: set[str] = set()  # components whose driver is being asked now
         for component in self.supervisor.COMPONENTS:
             self.report_clients[component] = rospy.ServiceProxy(REPORT_PREFIX + component, self.trigger)
         # subscriptions and servers last: their callbacks need everything above
@@ -145,22 +146,32 @@ class SupervisorNode(NodeCore):
         self.receive(topic, message, stamp)
 
     # ---- asking a driver where its component is ------------------------------------------------
-    def ask_report(self, component: str, client: Any) -> None:
-        """Call the driver's report service on a thread (rospy calls are synchronous); the answer
-        comes back under the lock."""
+    def ask_report(self, component: str, client: Any) -> bool:
+        """Call the driver's report service on a thread (rospy calls are synchronous), one at a time
+        per component; the answer comes back under the lock. Where no server is there yet, the
+        thread says so, and the next look asks again."""
+        if component in self.asking:
+            return False
+        self.asking.add(component)
 
         def ask() -> None:
+            response = None
             try:
-                client.wait_for_service(timeout=min(self.params["report_interval"], 5.0))
+                client.wait_for_service(timeout=0.2)
                 response = client()
-            except Exception:  # no driver offers it (yet), or it failed: asked again later
-                return
+            except Exception:  # no driver offers it (yet), or it failed
+                pass
             with self.lock:
-                self.report(component, bool(response.success), str(response.message))
+                self.asking.discard(component)
+                if response is None:
+                    self.asked.pop(component, None)  # not asked: the next look tries again
+                else:
+                    self.report(component, bool(response.success), str(response.message))
 
         thread = threading.Thread(target=ask)
         thread.daemon = True
         thread.start()
+        return True
 
     # ---- services and actions of a controller --------------------------------------------------------
     def subscribers(self, publisher: Any) -> int:

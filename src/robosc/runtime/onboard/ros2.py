@@ -200,11 +200,12 @@ class SupervisorNode(Node, NodeCore):
         """Whether every subscriber of a command topic acknowledged all it was sent."""
         return bool(topic.publisher.wait_for_all_acked(self.NOW))
 
-    def ask_report(self, component: str, client: Any) -> None:
+    def ask_report(self, component: str, client: Any) -> bool:
         if not client.service_is_ready():
-            return
+            return False
         future = client.call_async(self.trigger_request())
         future.add_done_callback(self.callback(self.reported_by, component))
+        return True
 
     def reported_by(self, component: str, future: Any) -> None:
         try:
