@@ -31,7 +31,6 @@ import signal
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -41,7 +40,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import revision as revisions  # noqa: E402
-from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, forbidden  # noqa: E402
+from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, follow, forbidden, take_driver  # noqa: E402
 
 PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
 
@@ -159,13 +158,7 @@ def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
         )
         graph.processes.append(driver)  # type: ignore[arg-type]
 
-        def read() -> None:
-            assert driver.stdout is not None
-            for line in driver.stdout:
-                if line.startswith("{"):
-                    lines.append(json.loads(line))
-
-        threading.Thread(target=read, daemon=True).start()
+        follow(driver.stdout, lines)
         graph.start(package, *PARAMS, "-p", f"event_log:={log}")
         wire.run(60, lambda: bool(lines) and lines[-1]["where"] in ("out1", "out2", "out3", "back3", "back2"))
         driver.send_signal(signal.SIGSTOP)
@@ -175,11 +168,7 @@ def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
         driver.wait(10)
         time.sleep(0.3)
         wire.run(25)
-        for line in lines:
-            if "received" in line:
-                world.received.append((line["t"], line["received"]))
-            if "sent" in line:
-                world.sent.append((line["t"], line["sent"], False))
+        take_driver(world, lines)
         found, checked = forbidden(log_of(log), world.received, world.sent)
         late = [r["time"] - stopped for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped]
         return {
@@ -210,16 +199,22 @@ def answers_twice(package: tuple[Path, str], work: Path) -> dict[str, Any]:
             return False
 
         wire.run(30, spurious)
-        found, checked = forbidden(log_of(log), world.received, world.sent)
-        taken = [r["event"] for r in log_of(log) if not r.get("controllable") and r["event"] in ANSWERS]
-        given = [name for _, name, duplicate in world.sent if not duplicate]
-        return {
-            "forbidden": len(found),
-            "commands": checked,
-            "answers logged that no robot gave": max(0, len(taken) - len(given)),
-        }
+        return answered_once(log, world.received, world.sent)
     finally:
         graph.close()
+
+
+def answered_once(log: Path, received: Any, sent: Any) -> dict[str, Any]:
+    """Forbidden commands, and the answers in the event log that no robot gave (duplicates and
+    spurious answers taken as events)."""
+    found, checked = forbidden(log_of(log), received, sent)
+    taken = [r["event"] for r in log_of(log) if not r.get("controllable") and r["event"] in ANSWERS]
+    given = [name for _, name, duplicate in sent if not duplicate]
+    return {
+        "forbidden": len(found),
+        "commands": checked,
+        "answers logged that no robot gave": max(0, len(taken) - len(given)),
+    }
 
 
 def stop_held(package: tuple[Path, str], work: Path, keep_file: bool) -> dict[str, Any]:
@@ -380,14 +375,7 @@ with lock:
     done(json.loads(world.dump()))
 """
         result = ros1_result(ros1_world(master, work, True, body))
-        found, checked = forbidden(log_of(log), result["received"], result["sent"])
-        taken = [r["event"] for r in log_of(log) if not r.get("controllable") and r["event"] in ANSWERS]
-        given = [name for _, name, duplicate in result["sent"] if not duplicate]
-        return {
-            "forbidden": len(found),
-            "commands": checked,
-            "answers logged that no robot gave": max(0, len(taken) - len(given)),
-        }
+        return answered_once(log, result["received"], result["sent"])
     finally:
         master.close()
 

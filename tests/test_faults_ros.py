@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from ros_support import Ros1, Ros2, build_package
-from warehouse_world import ROBOTS, Ros2Wire, World, forbidden
+from warehouse_world import ROBOTS, Ros2Wire, World, follow, forbidden, take_driver
 
 MODEL = "examples/warehouse.rscd"
 PARAMS = {"rate": 40.0, "seed": 3}
@@ -140,13 +140,7 @@ def test_ros2_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(
     driver = ros2.processes.start("bot2_driver", [sys.executable, "-c", DRIVER, str(ros2.domain)], ros2.env)
     reader = subprocess.Popen(["tail", "-F", "-n", "+1", str(tmp_path / "bot2_driver.log")], stdout=subprocess.PIPE, text=True)
 
-    def read() -> None:
-        assert reader.stdout is not None
-        for line in reader.stdout:
-            if line.startswith("{"):
-                lines.append(json.loads(line))
-
-    threading.Thread(target=read, daemon=True).start()
+    follow(reader.stdout, lines)
     try:
         node = ros2.start(package, event_log=str(log), **PARAMS)
         in_aisle = lambda: bool(lines) and lines[-1]["where"] in ("out1", "out2", "out3", "back3", "back2")  # noqa: E731
@@ -166,11 +160,7 @@ def test_ros2_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(
     finally:
         reader.kill()
     assert node.poll() is None
-    for line in lines:
-        if "received" in line:
-            world.received.append((line["t"], line["received"]))
-        if "sent" in line:
-            world.sent.append((line["t"], line["sent"], False))
+    take_driver(world, lines)
     assert check(log, world) == []
     decided = [r for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped_at]
     output = ros2.processes.output()

@@ -9,6 +9,7 @@ real situation.
 Plain Python 3.8+: Debian's python3 runs it in the ROS 1 client scripts."""
 
 import json
+import threading
 import time
 
 ROBOTS = ("bot1", "bot2", "bot3")
@@ -204,3 +205,23 @@ class Ros2Wire:
             if until is not None and until():
                 return True
         return until is None
+
+
+def follow(stream, lines):
+    """Append each JSON line of ``stream`` (a driver process's output) to ``lines``, on a thread."""
+
+    def read():
+        for line in stream:
+            if line.startswith("{"):
+                lines.append(json.loads(line))
+
+    threading.Thread(target=read, daemon=True).start()
+
+
+def take_driver(world, lines):
+    """What a driver of its own process (its JSON lines) received and answered, into ``world``."""
+    for line in lines:
+        if "received" in line:
+            world.received.append((line["t"], line["received"]))
+        if "sent" in line:
+            world.sent.append((line["t"], line["sent"], False))
