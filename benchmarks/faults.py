@@ -7,6 +7,10 @@ against where the robots really were.
 * **killed three ways**: ``kill -9`` right after a command went out, while an answer is due
   (it comes while the coordinator is down), and with a robot in the aisle; the same command
   line each time. Forbidden commands, and restarts after which nothing moved for 20 s.
+* **killed in the write-ahead window**: ``kill -9`` the instant the coordinator has written
+  what a command changes (5fa21e9: its state file replaced, ~8 ms before the command goes out;
+  this revision writes no state: its event log recording a decision), five times. Forbidden
+  commands, and restarts after which nothing moved for 20 s.
 * **a driver killed**: bot2's driver (a process of its own) stopped and killed in the aisle.
   Forbidden commands, and how long bot2 was still commanded.
 * **answers twice, and spurious**: every answer sent twice, a ``charged`` every second from a
@@ -15,8 +19,8 @@ against where the robots really were.
 * **the stop held, restarted**: the line follower stopped, killed, started again with its
   state file kept, and with it deleted: move commands in 8 s.
 
-On ROS 1 (rosmaster, Debian's rospy) the coordinator is killed three ways and given every answer
-twice as on ROS 2.
+On ROS 1 (rosmaster, Debian's rospy) the coordinator is killed three ways, bot2's driver is
+killed, and every answer is given twice, as on ROS 2.
 
     python benchmarks/faults.py [--baseline 5fa21e9] [--runs 1] [--no-ros1] [--only WORD ...]
 """
@@ -24,6 +28,7 @@ twice as on ROS 2.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import shutil
@@ -31,6 +36,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -40,6 +46,15 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import revision as revisions  # noqa: E402
+from warehouse_drivers import (  # noqa: E402
+    DRIVER_ROS1,
+    DRIVER_ROS2,
+    IN_THE_AISLE,
+    ROS1_KILLED_THREE_WAYS,
+    ROS1_WORLD,
+    kill_when_told,
+    stop_and_kill,
+)
 from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, follow, forbidden, take_driver  # noqa: E402
 
 PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
@@ -143,7 +158,60 @@ def killed_three_ways(package: tuple[Path, str], work: Path) -> dict[str, Any]:
         graph.close()
 
 
-DRIVER = (ROOT / "tests" / "test_faults_ros.py").read_text().split('DRIVER = """', 1)[1].split('"""', 1)[0]
+def signature(folder: Path, pattern: str) -> tuple[Any, ...]:
+    """What changes when a file in ``folder`` matching ``pattern`` is written (or replaced)."""
+    out = []
+    for path in sorted(folder.glob(pattern)) if folder.exists() else []:
+        with contextlib.suppress(OSError):
+            stat = path.stat()
+            out.append((path.name, stat.st_ino, stat.st_mtime_ns, stat.st_size))
+    return tuple(out)
+
+
+def kill_on_change(process: subprocess.Popen[bytes], folder: Path, pattern: str, before: tuple[Any, ...]) -> None:
+    """``kill -9`` ``process`` the instant a file in ``folder`` matching ``pattern`` is written
+    (looked at every 0.2 ms, for 30 s at most)."""
+    end = time.monotonic() + 30
+    while process.poll() is None and time.monotonic() < end:
+        if signature(folder, pattern) != before:
+            process.send_signal(signal.SIGKILL)
+            return
+        time.sleep(0.0002)
+
+
+def killed_in_the_window(package: tuple[Path, str], work: Path, kills: int = 5) -> dict[str, Any]:
+    """``kill -9`` the instant the coordinator has written what a command changes, before the
+    command can have gone out: where a revision persists its state (5fa21e9), when its state file
+    is replaced (the write-ahead window); else when its event log records a decision. Started
+    again each time with the same command line."""
+    graph = Graph(work)
+    log = work / "window.jsonl"
+    world = World(delay=0.3)
+    wire = Ros2Wire(graph.node, graph.executor, world)
+    states = work / "ros_home" / "robosc"
+    try:
+        node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+        frozen = 0
+        for _ in range(kills):
+            wire.run(2.0)  # it works a while
+            folder, pattern = (states, "*.state.json") if states.exists() else (log.parent, log.name)
+            watching = (node, folder, pattern, signature(folder, pattern))
+            watcher = threading.Thread(target=kill_on_change, args=watching, daemon=True)
+            watcher.start()
+            while watcher.is_alive():
+                wire.run(0.05)
+            if node.poll() is None:  # nothing written in 30 s
+                node.kill()
+            node.wait(10)
+            wire.run(1.0)  # down: the answers due are sent meanwhile
+            done = gos(world)
+            node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+            if not wire.run(20, lambda done=done: gos(world) >= done + 6):
+                frozen += 1
+        found, checked = forbidden(log_of(log), world.received, world.sent)
+        return {"forbidden": len(found), "commands": checked, "frozen restarts": frozen}
+    finally:
+        graph.close()
 
 
 def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
@@ -154,31 +222,32 @@ def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     lines: list[dict[str, Any]] = []
     try:
         driver = subprocess.Popen(
-            [sys.executable, "-c", DRIVER, str(graph.domain)], env=graph.env, stdout=subprocess.PIPE, text=True
+            [sys.executable, "-c", DRIVER_ROS2, str(graph.domain)], env=graph.env, stdout=subprocess.PIPE, text=True
         )
         graph.processes.append(driver)  # type: ignore[arg-type]
 
         follow(driver.stdout, lines)
         graph.start(package, *PARAMS, "-p", f"event_log:={log}")
-        wire.run(60, lambda: bool(lines) and lines[-1]["where"] in ("out1", "out2", "out3", "back3", "back2"))
-        driver.send_signal(signal.SIGSTOP)
-        stopped = time.time()
-        time.sleep(0.2)
-        driver.send_signal(signal.SIGKILL)
-        driver.wait(10)
+        wire.run(60, lambda: bool(lines) and lines[-1]["where"] in IN_THE_AISLE)
+        stopped = stop_and_kill(driver)
         time.sleep(0.3)
         wire.run(25)
         take_driver(world, lines)
-        found, checked = forbidden(log_of(log), world.received, world.sent)
-        late = [r["time"] - stopped for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped]
-        return {
-            "forbidden": len(found),
-            "commands": checked,
-            "bot2 commanded after its death": len(late),
-            "bot2 last commanded (s after its death)": round(max(late), 2) if late else 0.0,
-        }
+        return dead_driver(log, world, stopped)
     finally:
         graph.close()
+
+
+def dead_driver(log: Path, world: World, stopped: float) -> dict[str, Any]:
+    """Forbidden commands, and how long bot2 was still commanded after its driver stopped."""
+    found, checked = forbidden(log_of(log), world.received, world.sent)
+    late = [r["time"] - stopped for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped]
+    return {
+        "forbidden": len(found),
+        "commands": checked,
+        "bot2 commanded after its death": len(late),
+        "bot2 last commanded (s after its death)": round(max(late), 2) if late else 0.0,
+    }
 
 
 def answers_twice(package: tuple[Path, str], work: Path) -> dict[str, Any]:
@@ -263,9 +332,6 @@ def stop_held(package: tuple[Path, str], work: Path, keep_file: bool) -> dict[st
 
 # ---- ROS 1 ----------------------------------------------------------------------------------------
 ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
-TESTS = (ROOT / "tests" / "test_faults_ros.py").read_text()
-ROS1_WORLD = TESTS.split('ROS1_WORLD = """', 1)[1].split('"""', 1)[0]
-ROS1_KILLS = TESTS.split("def test_ros1_a_coordinator_killed_three_ways", 1)[1].split('+ """', 1)[1].split('"""', 1)[0]
 ROS1_HELPERS = ROOT / "tests" / "ros1_client.py"
 
 
@@ -307,11 +373,13 @@ class Master:
         self.log.close()
 
 
-def ros1_world(master: Master, work: Path, twice: bool, body: str) -> subprocess.Popen[Any]:
+def ros1_world(
+    master: Master, work: Path, twice: bool, body: str, robots: tuple[str, ...] = ROBOTS
+) -> subprocess.Popen[Any]:
     control = work / "control"
     script = (
         f"import sys\nsys.path.insert(0, {str(ROS1_HELPERS.parent)!r})\nfrom ros1_client import *\n"
-        + ROS1_WORLD.format(tests=str(ROOT / "tests"), twice=twice, control=str(control))
+        + ROS1_WORLD.format(tests=str(ROOT / "tests"), robots=robots, twice=twice, control=str(control))
         + body
     )
     return master.start([ROS1_PYTHON, "-c", script], stdout=subprocess.PIPE, text=True)
@@ -328,30 +396,41 @@ def ros1_killed_three_ways(package: Path, work: Path) -> dict[str, Any]:
     log = work / "killed.jsonl"
     try:
         node = master.node(package, log)
-        body = ROS1_KILLS.replace(
-            'assert run(60, lambda: sum(gos().values()) >= done_gos + 6), ("no progress after", moment, gos())',
-            "frozen.append(not run(20, lambda: sum(gos().values()) >= done_gos + 6))",
-        )
-        body = "frozen = []\n" + body.replace(
-            "done(json.loads(world.dump()))",
-            "result = json.loads(world.dump()); result['frozen'] = sum(frozen); done(result)",
-        )
-        body = body.replace('assert run(60, condition), ("never", moment, gos())', "run(60, condition)")
-        world = ros1_world(master, work, False, body)
-        control = work / "control"
-        seen = 0
-        while world.poll() is None:
-            kills = control.read_text().count("kill") if control.exists() else 0
-            if kills > seen:
-                seen = kills
-                node.send_signal(signal.SIGKILL)
-                node.wait(10)
-                time.sleep(1.0)
-                node = master.node(package, log)
-            time.sleep(0.005)
+        world = ros1_world(master, work, False, ROS1_KILLED_THREE_WAYS.format(wait=20))
+        kill_when_told(work / "control", world, node, lambda: master.node(package, log))
         result = ros1_result(world)
         found, checked = forbidden(log_of(log), result["received"], result["sent"])
         return {"forbidden": len(found), "commands": checked, "frozen restarts": result.get("frozen", "?")}
+    finally:
+        master.close()
+
+
+def ros1_driver_killed(package: Path, work: Path) -> dict[str, Any]:
+    master = Master(work)
+    log = work / "driver.jsonl"
+    killed = work / "killed"
+    lines: list[dict[str, Any]] = []
+    try:
+        driver = master.start([ROS1_PYTHON, "-c", DRIVER_ROS1], stdout=subprocess.PIPE, text=True)
+        follow(driver.stdout, lines)
+        master.node(package, log)
+        body = f"""
+run(90, lambda: os.path.exists({str(killed)!r}))
+run(25)
+with lock:
+    done(json.loads(world.dump()))
+"""
+        world = ros1_world(master, work, False, body, robots=("bot1", "bot3"))
+        end = time.monotonic() + 60
+        while not (lines and lines[-1]["where"] in IN_THE_AISLE) and time.monotonic() < end:
+            time.sleep(0.01)
+        stopped = stop_and_kill(driver)
+        killed.write_text("killed")
+        result = ros1_result(world)
+        everything = World()
+        everything.received, everything.sent = result["received"], result["sent"]
+        take_driver(everything, lines)
+        return dead_driver(log, everything, stopped)
     finally:
         master.close()
 
@@ -401,6 +480,7 @@ def main() -> None:
                 tag = f"{label}{run}"
                 scenarios: list[tuple[str, Any, tuple[Any, ...]]] = [
                     ("killed three ways", killed_three_ways, (warehouse, work / f"k{tag}")),
+                    ("killed in the write-ahead window", killed_in_the_window, (warehouse, work / f"w{tag}")),
                     ("a driver killed", driver_killed, (warehouse, work / f"d{tag}")),
                     ("answers twice, and spurious", answers_twice, (warehouse, work / f"t{tag}")),
                     ("stop held, restarted, state file kept", stop_held, (line, work / f"s{tag}", True)),
@@ -409,6 +489,7 @@ def main() -> None:
                 if Path(ROS1_PYTHON).exists() and args.ros1:
                     scenarios += [
                         ("ROS 1: killed three ways", ros1_killed_three_ways, (warehouse1, work / f"k1{tag}")),
+                        ("ROS 1: a driver killed", ros1_driver_killed, (warehouse1, work / f"d1{tag}")),
                         ("ROS 1: answers twice, and spurious", ros1_answers_twice, (warehouse1, work / f"t1{tag}")),
                     ]
                 if args.only:

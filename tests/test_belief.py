@@ -220,6 +220,46 @@ def test_without_acknowledgements_a_command_is_unconfirmed_when_its_topic_loses_
     assert node.supervisor.unconfirmed == {"a16_Door": ("closed", "opening")}
 
 
+def test_a_lost_command_leaves_its_robot_wherever_answers_since_moved_it() -> None:
+    """ROS 1: open_door went out, door_opened came, then the topic lost its subscriber: the door
+    may be closed (the command never arrived), opening, or open (it did, and answered)."""
+    node = warehouse(ack_timeout=5.0)
+    node.acknowledges = False
+    node.supervisor.answered = None  # without the proof an answer gives (below)
+    assert node.supervisor.perform("open_door")
+    node.checkpoint()
+    assert node.supervisor.deliver("door_opened")
+    node.listening = False
+    node.checkpoint()
+    assert node.supervisor.unconfirmed == {"a16_Door": ("closed", "opening", "open")}
+
+
+def test_an_answer_only_the_commanded_robot_gives_proves_the_command_arrived() -> None:
+    """ROS 1: dock went out and bot1 answered charged, which it gives only while charging: the
+    dock arrived, and losing the topic's subscriber afterwards leaves bot1 where it is."""
+    node = warehouse(ack_timeout=5.0)
+    node.acknowledges = False
+    assert node.supervisor.perform("bot1.dock")
+    node.checkpoint()
+    assert len(node.delivery.pending) == 1
+    assert node.supervisor.deliver("bot1.charged")
+    assert node.delivery.pending == []
+    node.listening = False
+    node.checkpoint()
+    assert node.supervisor.unconfirmed == {} and node.supervisor.snapshot()["automata"]["bot1"] == "depot"
+
+
+def test_an_answer_the_robot_gives_where_the_command_found_it_too_proves_nothing() -> None:
+    node = warehouse(ack_timeout=5.0)
+    node.acknowledges = False
+    assert node.supervisor.perform("bot1.dock")
+    node.checkpoint()
+    node.delivery.arrived("a13_bot1", ("depot", "charging"))  # it could have answered from the depot
+    assert [p.event for p in node.delivery.pending] == ["bot1.dock"]
+    node.delivery.arrived("a13_bot1", ("charging",))
+    assert node.delivery.pending == []
+
+
 def test_other_robots_go_on_where_it_is_safe_whichever_way_an_unconfirmed_one_went() -> None:
     def robot(bot1: str) -> Any:
         made = WAREHOUSE(seed=1)
@@ -381,3 +421,34 @@ def test_a_driver_whose_report_service_is_not_there_yet_is_asked_at_the_next_loo
     ready[0] = True
     node.housekeeping()
     assert "EmergencyStop" not in node.supervisor.unsure()
+
+
+def test_a_report_asked_for_before_a_command_went_out_is_not_taken() -> None:
+    """Asked twice (the first answer slow), bot1's driver answers depot twice; between the answers
+    the first confirms bot1 and dock goes out. The second may tell where bot1 was before dock
+    arrived: not taken (dock in flight, or sent since it was asked); asked again."""
+    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, report_interval=0.01, ack_timeout=5.0)
+    node.acknowledges = True
+    node.housekeeping()
+    time.sleep(0.02)
+    node.housekeeping()  # asked again: the first answers have not come
+    assert node.asked_for.count("bot1") == 2
+    for component, where in (("bot1", "depot"), ("bot2", "depot"), ("bot3", "depot"), ("Door", "closed")):
+        node.report(component, True, where)  # the first answers
+    assert node.supervisor.unsure() == {}
+    assert node.supervisor.perform("bot1.dock")
+    node.checkpoint()
+    node.report("bot1", True, "depot")  # the second answer, while dock is on its way
+    assert node.supervisor.unconfirmed["a13_bot1"] == ("depot", "charging")
+    node.acked = True
+    node.checkpoint()  # acknowledged: bot1 is charging
+    assert node.supervisor.snapshot()["automata"]["bot1"] == "charging"
+    node.supervisor.unconfirm({"a13_bot1": ("depot", "charging")}, "whatever reason")
+    node.report("bot1", True, "depot")  # a third, also asked for before dock went out
+    assert node.supervisor.unconfirmed["a13_bot1"] == ("depot", "charging")
+    assert sum("report of bot1 not taken" in text for _, text in node.logs) == 2
+    time.sleep(0.02)
+    node.housekeeping()  # asked again, after dock: taken
+    assert node.asked_for.count("bot1") == 3
+    node.report("bot1", True, "charging")
+    assert "bot1" not in node.supervisor.unsure()

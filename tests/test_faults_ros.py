@@ -11,16 +11,27 @@ log as events."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import signal
 import subprocess
 import sys
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from ros_support import Ros1, Ros2, build_package
+from ros_support import ROS1_PYTHON, Ros1, Ros2, build_package, wait_until
+from warehouse_drivers import (
+    DRIVER_ROS1,
+    DRIVER_ROS2,
+    IN_THE_AISLE,
+    ROS1_KILLED_THREE_WAYS,
+    ROS1_WORLD,
+    kill_when_told,
+    stop_and_kill,
+)
 from warehouse_world import ROBOTS, Ros2Wire, World, follow, forbidden, take_driver
 
 MODEL = "examples/warehouse.rscd"
@@ -93,39 +104,37 @@ def test_ros2_a_coordinator_killed_three_ways_never_commands_what_the_robots_for
     assert ros2.processes.output().count("confirmed by its driver") >= 4 * 4  # every start asked all four
 
 
-DRIVER = """
-import json, sys, time, threading, rclpy
-from std_msgs.msg import Empty
-from std_srvs.srv import Trigger
-rclpy.init(domain_id=int(sys.argv[1]))
-node = rclpy.create_node("bot2_driver")
-where = ["depot"]
-task = ("depot", "out1", "out2", "out3", "shelf", "back3", "back2", "back1")
-charged = node.create_publisher(Empty, "/bot2/charged", 10)
-def say(**fields):
-    print(json.dumps(dict(t=time.time(), where=where[0], **fields)), flush=True)
-def go(_):
-    say(received="bot2.go")
-    if where[0] != "charging":
-        where[0] = task[(task.index(where[0]) + 1) % len(task)]
-def dock(_):
-    say(received="bot2.dock")
-    where[0] = "charging"
-    def done():
-        time.sleep(0.3)
-        where[0] = "depot"
-        say(sent="bot2.charged")
-        charged.publish(Empty())
-    threading.Thread(target=done, daemon=True).start()
-def report(request, response):
-    response.success, response.message = True, where[0]
-    return response
-node.create_subscription(Empty, "/bot2/go", go, 100)
-node.create_subscription(Empty, "/bot2/dock", dock, 100)
-node.create_service(Trigger, "/robosc/report/bot2", report)
-say(started=True)
-rclpy.spin(node)
-"""
+@contextlib.contextmanager
+def bot2_driver(processes: Any, command: list[str], env: dict[str, str], tmp_path: Path) -> Iterator[tuple[Any, list[dict[str, Any]]]]:
+    """bot2's driver started (a process of its own), and the JSON lines it prints, as they come."""
+    lines: list[dict[str, Any]] = []
+    driver = processes.start("bot2_driver", command, env)
+    reader = subprocess.Popen(["tail", "-F", "-n", "+1", str(tmp_path / "bot2_driver.log")], stdout=subprocess.PIPE, text=True)
+    follow(reader.stdout, lines)
+    try:
+        yield driver, lines
+    finally:
+        reader.kill()
+        reader.wait()
+
+
+def kill_in_the_aisle(driver: subprocess.Popen[bytes], lines: list[dict[str, Any]], run: Any, output: Any) -> float:
+    """Once bot2 is in the aisle: its driver stopped (it neither acknowledges nor answers), then
+    killed; when it was stopped."""
+    in_aisle = lambda: bool(lines) and lines[-1]["where"] in IN_THE_AISLE  # noqa: E731
+    assert run(60, in_aisle), f"bot2 never in the aisle: {lines[-3:]}\n{output()[-3000:]}"
+    stopped_at = stop_and_kill(driver)
+    time.sleep(0.3)  # the last lines it printed
+    return stopped_at
+
+
+def held_in_time(log: Path, stopped_at: float, output: str, why: str) -> None:
+    """bot2 is commanded no more than ack_timeout (1 s, and a little) after its driver stopped,
+    and the coordinator said why."""
+    decided = [r for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped_at]
+    assert f"may not have arrived ({why}): bot2 unconfirmed" in output or not decided, output[-3000:]
+    late = [r["time"] - stopped_at for r in decided]
+    assert all(t < 1.5 for t in late), f"bot2 commanded {late} s after its driver died"
 
 
 def test_ros2_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(ros2: Ros2, tmp_path: Path) -> None:
@@ -136,37 +145,20 @@ def test_ros2_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(
     package, log = start_coordinator(ros2, tmp_path)
     world = World(delay=0.3, muted=("bot2",))
     wire = Ros2Wire(ros2.node, ros2.executor, world, robots=("bot1", "bot3"))
-    lines: list[dict[str, Any]] = []
-    driver = ros2.processes.start("bot2_driver", [sys.executable, "-c", DRIVER, str(ros2.domain)], ros2.env)
-    reader = subprocess.Popen(["tail", "-F", "-n", "+1", str(tmp_path / "bot2_driver.log")], stdout=subprocess.PIPE, text=True)
-
-    follow(reader.stdout, lines)
-    try:
+    command = [sys.executable, "-c", DRIVER_ROS2, str(ros2.domain)]
+    with bot2_driver(ros2.processes, command, ros2.env, tmp_path) as (driver, lines):
         node = ros2.start(package, event_log=str(log), **PARAMS)
-        in_aisle = lambda: bool(lines) and lines[-1]["where"] in ("out1", "out2", "out3", "back3", "back2")  # noqa: E731
-        assert wire.run(60, in_aisle), f"bot2 never in the aisle: {lines[-3:]}\n{ros2.processes.output()[-3000:]}"
-        driver.send_signal(signal.SIGSTOP)
-        stopped_at = time.time()
-        time.sleep(0.2)
-        driver.send_signal(signal.SIGKILL)
-        driver.wait(10)
-        time.sleep(0.3)  # the last lines it printed
+        stopped_at = kill_in_the_aisle(driver, lines, wire.run, ros2.processes.output)
         others = len(world.received)
         # the others go on with what does not depend on where bot2 is (the charger, the door, the
         # aisle where bot2 cannot be): bot2 may be in the doorway or the aisle
         assert wire.run(30, lambda: len(world.received) - others >= 6), (
             f"the others stopped: {world.received[-5:]}\n{ros2.processes.output()[-3000:]}"
         )
-    finally:
-        reader.kill()
     assert node.poll() is None
     take_driver(world, lines)
     assert check(log, world) == []
-    decided = [r for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped_at]
-    output = ros2.processes.output()
-    assert "may not have arrived (not acknowledged within 1.0 s): bot2 unconfirmed" in output or not decided, output[-3000:]
-    late = [r["time"] - stopped_at for r in decided]
-    assert all(t < 1.5 for t in late), f"bot2 commanded {late} s after its driver died"
+    held_in_time(log, stopped_at, ros2.processes.output(), "not acknowledged within 1.0 s")
 
 
 def test_ros2_duplicated_and_impossible_answers_never_move_the_belief(ros2: Ros2, tmp_path: Path) -> None:
@@ -203,91 +195,68 @@ def test_ros2_duplicated_and_impossible_answers_never_move_the_belief(ros2: Ros2
 
 
 # ---- ROS 1 ---------------------------------------------------------------------------------------
-ROS1_WORLD = """
-sys.path.insert(0, {tests!r})
-from warehouse_world import World, COMMANDS, ANSWERS, ROBOTS, topic
-from std_srvs.srv import Trigger, TriggerResponse
-start()
-world = World(delay=0.3, twice={twice!r}, again=0.0)
-lock = threading.Lock()
-publishers = dict((e, rospy.Publisher("/" + topic(e), Empty, queue_size=100)) for e in ANSWERS)
-def heard(event):
-    def take(_):
-        with lock:
-            world.command(event)
-    return take
-for event in COMMANDS:
-    rospy.Subscriber("/" + topic(event), Empty, heard(event), queue_size=100)
-def report(component):
-    def answer(_):
-        with lock:
-            return TriggerResponse(True, world.rules.report(component))
-    return answer
-for component in ROBOTS + ("Door",):
-    rospy.Service("/robosc/report/" + component, Trigger, report(component))
-def publish(name):
-    publishers[name].publish(Empty())
-def gos():
-    return dict((r, sum(1 for _, e in world.received if e == r + ".go")) for r in ROBOTS)
-def run(seconds, until=None):
-    end = time.time() + seconds
-    while time.time() < end:
-        with lock:
-            world.step(publish)
-            if until is not None and until():
-                return True
-        time.sleep(0.01)
-    return until is None
-control = open({control!r}, "w", buffering=1)  # what the test reads: when to kill, when done
-"""
+def ros1_world(tmp_path: Path, robots: tuple[str, ...], twice: bool) -> str:
+    return ROS1_WORLD.format(tests=str(Path(__file__).parent), robots=robots, twice=twice, control=str(tmp_path / "control"))
 
 
 def test_ros1_a_coordinator_killed_three_ways_never_commands_what_the_robots_forbid(ros1: Ros1, tmp_path: Path) -> None:
     package = build_package(MODEL, 1, "controller", tmp_path)
     log = tmp_path / "events.jsonl"
     control = tmp_path / "control"
-    script = ROS1_WORLD.format(tests=str(Path(__file__).parent), twice=False, control=str(control)) + """
-node_ready = run(60, lambda: len(world.received) > 0)
-for moment in ("a command just went out", "an answer is due", "robots in the aisle"):
-    before = len(world.received)
-    if moment == "a command just went out":
-        condition = lambda: len(world.received) > before
-    elif moment == "an answer is due":
-        condition = lambda: any(not d[2] for d in world.due)
-    else:
-        condition = lambda: any(w in ("out2", "out3", "shelf", "back3", "back2") for w in world.rules.where.values())
-    assert run(60, condition), ("never", moment, gos())
-    control.write("kill\\n")
-    run(2.5)  # down, and started again
-    done_gos = sum(gos().values())
-    assert run(60, lambda: sum(gos().values()) >= done_gos + 6), ("no progress after", moment, gos())
-with lock:
-    done(json.loads(world.dump()))
-"""
+    script = ros1_world(tmp_path, ROBOTS, False) + ROS1_KILLED_THREE_WAYS.format(wait=60)
     node = ros1.node(package, event_log=str(log), **PARAMS)
     result: dict[str, Any] = {}
     client = threading.Thread(target=lambda: result.update(ros1.client(script, timeout=300)))
     client.start()
-    seen = 0
-    while client.is_alive():
-        kills = control.read_text().count("kill") if control.exists() else 0
-        if kills > seen:
-            seen = kills
-            node.send_signal(signal.SIGKILL)
-            node.wait(10)
-            time.sleep(1.0)
-            node = ros1.node(package, event_log=str(log), **PARAMS)
-        time.sleep(0.005)
-    assert seen == 3, result
+    kills, node = kill_when_told(control, client, node, lambda: ros1.node(package, event_log=str(log), **PARAMS))
+    assert kills == 3 and result["missed"] == [] and result["frozen"] == 0, (kills, result.get("missed"), result.get("frozen"))
     found, checked = forbidden(log_of(log), result["received"], result["sent"])
     assert checked > 10 and found == [], found
+
+
+def test_ros1_a_dead_driver_is_held_within_the_ack_timeout_and_the_others_go_on(ros1: Ros1, tmp_path: Path) -> None:
+    """As on ROS 2: bot2's driver stopped, then killed, in the aisle. TCPROS drops its connection
+    at once; the commands sent within ack_timeout before may not have arrived: bot2 is held, the
+    others go on."""
+    package = build_package(MODEL, 1, "controller", tmp_path)
+    log = tmp_path / "events.jsonl"
+    killed = tmp_path / "killed"
+    script = ros1_world(tmp_path, ("bot1", "bot3"), False) + f"""
+assert run(90, lambda: os.path.exists({str(killed)!r})), ("bot2 never killed", gos())
+others = len(world.received)
+assert run(30, lambda: len(world.received) - others >= 6), ("the others stopped", world.received[-5:])
+with lock:
+    done(json.loads(world.dump()))
+"""
+    result: dict[str, Any] = {}
+    with bot2_driver(ros1.processes, [ROS1_PYTHON, "-c", DRIVER_ROS1], ros1.env, tmp_path) as (driver, lines):
+        node = ros1.node(package, event_log=str(log), **PARAMS)
+
+        def world_runs() -> None:
+            try:
+                result.update(ros1.client(script, timeout=200))
+            except AssertionError as error:
+                result["error"] = str(error)
+
+        client = threading.Thread(target=world_runs)
+        client.start()
+        wait = lambda seconds, until: wait_until(until, seconds, 0.01)  # noqa: E731
+        stopped_at = kill_in_the_aisle(driver, lines, wait, ros1.processes.output)
+        killed.write_text("killed")
+        client.join(200)
+    assert "received" in result and node.poll() is None, result.get("error", ros1.processes.output()[-3000:])
+    world = World()
+    world.received, world.sent = result["received"], result["sent"]
+    take_driver(world, lines)
+    assert check(log, world) == []
+    held_in_time(log, stopped_at, ros1.processes.output(), "no subscriber left")
 
 
 def test_ros1_duplicated_and_impossible_answers_never_move_the_belief(ros1: Ros1, tmp_path: Path) -> None:
     """As on ROS 2: each answer twice, a spurious ``charged``; taken once, the others ignored."""
     package = build_package(MODEL, 1, "controller", tmp_path)
     log = tmp_path / "events.jsonl"
-    script = ROS1_WORLD.format(tests=str(Path(__file__).parent), twice=True, control=str(tmp_path / "control")) + """
+    script = ros1_world(tmp_path, ROBOTS, True) + """
 last = [time.time()]
 def spurious():
     if world.received and time.time() - last[0] > 1.0:

@@ -294,6 +294,21 @@ def test_enum_conversion_refuses_data_it_cannot_read() -> None:
     assert len(warnings) == 1 and "scan_right: unreadable data" in warnings[0]  # the rest rate-limited
 
 
+def test_received_data_stored_as_it_came_must_be_inside_its_variable_type() -> None:
+    """``safety := value`` (an enum read from the scan): a value the enum does not have (the
+    data of an enum-typed event given by name, ``raw`` False) is not taken; the variable keeps
+    what it had."""
+    p = plan_supervisor(synthesize_model(load_model(ROOT / "examples/line_follower.rscd")))
+    field = {f.label: f.name for f in p.fields}["Lidar.safety"]
+    warnings: list[str] = []
+    sup = load_module(p).Robot(seed=1, warn=warnings.append)
+    sup.warn.interval = 0.0
+    assert sup.deliver("scan", "unsafe", raw=False) is True and getattr(sup, field) == "unsafe"
+    for bad in ("Unsafe", None, 1, math.nan):
+        assert sup.deliver("scan", bad, raw=False) is False
+        assert getattr(sup, field) == "unsafe" and "Lidar.safety" in warnings[-1], warnings[-1]
+
+
 def test_received_data_that_cannot_be_read_does_not_deliver_its_event() -> None:
     p = plan_supervisor(synthesize_model(load_model(ROOT / "examples/pick_and_light.rscd")))
     field = {f.label: f.name for f in p.fields}

@@ -351,6 +351,16 @@ class _Planner:
         data through the runtime's checks and refuses the event when a value cannot be read."""
         items = []
         names = self.checked if received else self.names
+        if received and len(transition.assignments) == 1:
+            a = transition.assignments[0]
+            if not a.steps and isinstance(a.variable.type, m.EnumType) and python(a.value, names) == "value":
+                # an enum read from the data as it came: one of the enum's names, else not taken
+                label = f"{a.variable.owner}.{a.variable.name}"
+                enum = _type_check(a.variable, ())
+                return [
+                    f"self.{self.names.variables[a.variable]} = value if type(value) is str and value in {enum}"
+                    f" else self._outside({label!r}, value)"
+                ]
         for a in transition.assignments:
             label = f"{a.variable.owner}.{a.variable.name}"
             field = self.names.variables[a.variable]

@@ -54,6 +54,7 @@ class Delivery(object):
         self.sending: List[Tuple[str, Any, Any, Dict[str, Any], float]] = []
         self.pending: List[Pending] = []
         self.silent: Dict[str, float] = {}  # topic -> since when a subscriber has not acknowledged (ROS 2)
+        self.commands: Dict[str, int] = {}  # component -> how many commands that changed it went out
 
     def sent(self, event: str, topic: Any) -> None:
         """The node is putting ``event`` on ``topic`` (before the event's effect)."""
@@ -119,10 +120,25 @@ class Delivery(object):
             changed[attribute] = _either(unsure.get(attribute, (old,)), supervisor.unconfirmed.get(attribute, (new,)))
         if not after:
             return
+        for component in set(supervisor.COMPONENT_OF[attribute] for attribute in after):
+            self.commands[component] = self.commands.get(component, 0) + 1
         if self.node.acknowledges:  # ROS 2: unconfirmed until acknowledged
             supervisor.unconfirm(changed, "%s on its way" % (event,))
         versions = dict((attribute, supervisor.versions.get(attribute, 0)) for attribute in after)
         self.pending.append(Pending(event, topic, at + self.node.params["ack_timeout"], after, changed, versions))
+
+    def arrived(self, field: str, locations: Tuple[str, ...]) -> None:
+        """An answer moved ``field`` on from where it is answered (``locations``): a command on
+        its way that put it there arrived, where the robot would not have answered from any other
+        place the command left it (a driver answers what it did, once)."""
+        for pending in list(self.pending):
+            either = pending.either.get(field, ())
+            if field not in pending.after or either is None:
+                continue
+            if all(value not in locations for value in either if value != pending.after[field]):
+                del pending.after[field], pending.either[field]
+                if not pending.after:
+                    self.pending.remove(pending)
 
     def _delivered(self, pending: Pending) -> None:
         self.pending.remove(pending)
@@ -141,13 +157,10 @@ class Delivery(object):
         supervisor = self.node.supervisor
         components = sorted(set(supervisor.COMPONENT_OF[a] for a in pending.after))
         reason = "%s may not have arrived (%s)" % (pending.event, why)
+        # where the robot may be: where the command may have left it, or where the supervisor has
+        # it now (answers may have moved it on since)
         fields = dict(
-            (
-                a,
-                values
-                if supervisor.versions.get(a, 0) == pending.versions[a]
-                else _either(values, supervisor.unconfirmed.get(a, (getattr(supervisor, a),))),
-            )
+            (a, _either(values, supervisor.unconfirmed.get(a, (getattr(supervisor, a),))))
             for a, values in pending.either.items()
         )
         supervisor.unconfirm(fields, reason)

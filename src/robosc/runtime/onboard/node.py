@@ -175,6 +175,8 @@ class Topic(object):
         # the data last sent and the message made of it, used again while the data is the very same
         # object (a model's constant data is): a message is never changed once made
         self.made: Any = None
+        # how many subscribers it has, as the middleware last told (ROS 2's matched events); None: ask
+        self.matched: Optional[int] = None
 
 
 class Call(object):
@@ -242,10 +244,14 @@ class NodeCore(object):
         self.supervisor.watching = True
         self.supervisor.skew = self.params["clock_skew"]
         self.delivery = Delivery(self)
+        self.supervisor.answered = self.delivery.arrived
         self.reported: Optional[Dict[str, Any]] = None  # the health last published
         self.health_seen: Any = None  # (supervisor.health_changes, commands on their way) when last looked
         self.report_clients: Dict[str, Any] = {}  # component -> the adapter's client of its report service
         self.asked: Dict[str, float] = {}  # component -> when its driver was last asked for its state
+        # component -> how many commands to it had gone out when its driver was last asked: a report
+        # asked for before a command went out may tell where it was before the command arrived
+        self.asked_after: Dict[str, int] = {}
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
         if self.supervisor.unconfirmed:
             log(
@@ -316,6 +322,7 @@ class NodeCore(object):
             client = self.report_clients.get(component)
             if client is not None:
                 try:
+                    self.asked_after[component] = self.delivery.commands.get(component, 0)
                     if self.ask_report(component, client):
                         self.asked[component] = now
                 except Exception as error:
@@ -328,6 +335,12 @@ class NodeCore(object):
             return
         if not success:
             self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
+            return
+        if self.delivery.commands.get(component, 0) != self.asked_after.get(component, 0):
+            # asked for before a command to it went out: its driver may have answered before the
+            # command arrived; asked again (once none is on its way: ask_reports)
+            self.asked.pop(component, None)
+            self.log("info", "report of %s not taken: a command to it went out since it was asked" % (component,))
             return
         why = self.supervisor.confirm(component, message)
         if why is None:
@@ -601,7 +614,7 @@ class NodeCore(object):
                     self.warnings("held: %s: %s" % (name, silent), "silent " + name)
                 self.refused = silent
                 return False
-            if self.params["wait_for_listeners"] and self.listeners(topic) == 0:
+            if self.params["wait_for_listeners"] and self.heard_by(topic) == 0:
                 # a message nobody subscribes to is lost, and the supervisor would believe the
                 # robot got it (a robot not up yet, a link down): hold the command instead
                 self.warnings("held: %s: nothing subscribes to %s" % (name, topic.name), "unheard " + name)
@@ -723,6 +736,13 @@ class NodeCore(object):
     def listeners(self, topic: Topic) -> int:
         """How many subscribers ``topic`` (a command topic of the robot) has now."""
         return self.subscribers(topic.publisher)
+
+    def heard_by(self, topic: Topic) -> int:
+        """How many subscribers ``topic`` has, as the middleware last told without being asked
+        (where it tells: ROS 2), else asked now. Whether a command sent arrived is told by
+        ``delivery``, which asks: this is only the look before a command, kept off the middleware."""
+        matched = topic.matched
+        return matched if matched is not None else self.listeners(topic)
 
     def text_subscribers(self, topic_name: str) -> int:
         """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""

@@ -31,6 +31,7 @@ from rclpy.action.client import ActionClient
 from rclpy.action.server import ActionServer, CancelResponse
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.duration import Duration
+from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPolicy
@@ -130,7 +131,14 @@ class SupervisorNode(Node, NodeCore):
         if supervising:
             self.text_publishers[BLOCKED_TOPIC] = self.create_publisher(self.text_type, BLOCKED_TOPIC, reliable)
         for topic in self.outputs.values():  # commands to the robot
-            topic.publisher = self.create_publisher(topic.type, topic.name, reliable, qos_overriding_options=overrides)
+            topic.publisher = self.create_publisher(
+                topic.type,
+                topic.name,
+                reliable,
+                qos_overriding_options=overrides,
+                event_callbacks=PublisherEventCallbacks(matched=self.matching(topic)),
+            )
+            topic.matched = topic.publisher.get_subscription_count()
             if supervising:  # ... as the controller sends them
                 self.create_subscription(
                     topic.type, controller_side(topic.name), self.callback(self.request, topic), reliable
@@ -162,6 +170,15 @@ class SupervisorNode(Node, NodeCore):
                     cancel_callback=self.serve_cancel(call),
                     callback_group=forwarding,
                 )
+
+    @staticmethod
+    def matching(topic: Any) -> Callable[[Any], None]:
+        """The publisher's matched event: how many subscribers ``topic`` has now (``heard_by``)."""
+
+        def matched(status: Any) -> None:
+            topic.matched = int(status.current_count)
+
+        return matched
 
     def callback(self, function: Callable[..., Any], *first: Any) -> Callable[..., Any]:
         """``function(*first, *args)`` for rclpy: under the lock in a supervision layer (a

@@ -219,6 +219,13 @@ class _Computed(object):
 ANY = _Computed()
 
 
+def _unreadable_data(enum: str, error: Exception) -> Unreadable:
+    """Why the rules of ``enum`` could not read the data: ``error``, said as Unreadable."""
+    if isinstance(error, Unreadable):
+        return Unreadable("%s: %s" % (enum, error))
+    return Unreadable("%s: %s: %s" % (enum, type(error).__name__, error))
+
+
 def _fits(check: Any, value: Any) -> bool:
     """Whether ``value`` is inside a field's domain (``check`` as the generated code gives it:
     None for anything, a type name, ("integer", low, high), or the names an enum or a
@@ -290,6 +297,7 @@ class Supervisor(object):
     # uncontrollable event -> ((component location field, the locations where the model answers it), ...):
     # only events some component answers in some locations but not in all
     ANSWERS: ClassVar[Dict[str, Tuple[Tuple[str, Tuple[str, ...]], ...]]] = {}
+    ALWAYS: ClassVar[Tuple[str, ...]] = ()  # uncontrollable events the plant takes in every state
     # indexes of the tables above, made by prepare()
     EVENT: ClassVar[Dict[str, Event]]
     CONTROLLABLE: ClassVar[Tuple[str, ...]]
@@ -308,6 +316,7 @@ class Supervisor(object):
     TRACKED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the components' fields
     ANSWERED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the fields ANSWERS names
     GETTER: ClassVar[Callable[[Any], Any]]  # every field's value at once (C speed)
+    FREE: ClassVar[FrozenSet[str]]  # ALWAYS but those ANSWERS names: always taken, without a look
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Supervisor, cls).__init_subclass__(**kwargs)
@@ -331,6 +340,7 @@ class Supervisor(object):
         cls.GETTER = getter if len(cls.ATTRIBUTES) != 1 else (lambda self: (getter(self),))
         answered = set(field for answers in cls.ANSWERS.values() for field, _ in answers)
         cls.ANSWERED = tuple((cls.INDEX[f], f) for f in cls.ATTRIBUTES if f in answered)
+        cls.FREE = frozenset(cls.ALWAYS).difference(cls.ANSWERS)
         cls.COMPONENT_OF = {}
         cls.COMPONENTS = {}
         cls.CANDIDATES = {}
@@ -369,6 +379,9 @@ class Supervisor(object):
         self.watching = False
         self.commanded: Dict[str, float] = {}
         self.heard: Dict[str, float] = {}
+        # told (while watching) when an answer moved a field from a location where its component
+        # answers it: answered(field, those locations); the robot had the command that put it there
+        self.answered: Optional[Callable[[str, Tuple[str, ...]], None]] = None
         self.skew = 0.0  # seconds a robot's clock may be behind this one
         self.reset(confirmed)
 
@@ -805,14 +818,15 @@ class Supervisor(object):
             raise KeyError("no uncontrollable event %r" % (name,))
         if raw and event.convert is not None:
             try:
-                value = self.convert(event.convert, value)
-            except Unreadable as error:
-                return self._unreadable(event, error)
+                value = event.convert[0](value)  # the enum's rules, as convert() applies them
+            except Exception as error:
+                return self._unreadable(event, _unreadable_data(event.convert[1], error))
         if self.unconfirmed:
             return self._deliver_unsure(event, value, stamp)
-        why = self._not_taken(name, stamp)
-        if why is not None:
-            return self.ignore(name, why)
+        if name not in self.FREE:
+            why = self._not_taken(name, stamp)
+            if why is not None:
+                return self.ignore(name, why)
         saved = type(self).GETTER(self)
         try:
             getattr(self, event.method)(value)
@@ -826,6 +840,8 @@ class Supervisor(object):
     def _not_taken(self, name: str, stamp: Optional[float]) -> Optional[str]:
         """Why the uncontrollable event ``name`` (stamped ``stamp``) is not taken here, or None:
         the plant cannot take it, or no component that answers it waits for it."""
+        if name in self.FREE:
+            return None
         if not self._expected()[self.EXPECTED_AT[name]]:
             return "not expected now"
         answers = self.ANSWERS.get(name)
@@ -855,13 +871,20 @@ class Supervisor(object):
         self._dirty = True
         if self.watching:
             index = self.INDEX
-            for attribute in list(self.commanded):  # an answer came: no longer waiting for one
-                if getattr(self, attribute) is not saved[index[attribute]]:
-                    del self.commanded[attribute]
+            if self.commanded:
+                for attribute in list(self.commanded):  # an answer came: no longer waiting for one
+                    if getattr(self, attribute) is not saved[index[attribute]]:
+                        del self.commanded[attribute]
             if stamp is not None:
                 for place, attribute in self.ANSWERED:
                     if getattr(self, attribute) is not saved[place]:
                         self.heard[attribute] = max(stamp, self.heard.get(attribute, stamp))
+            answers = self.ANSWERS.get(event.name)
+            if answers is not None and self.answered is not None:
+                for field, locations in answers:
+                    before, now = saved[index[field]], getattr(self, field)
+                    if type(before) is str and type(now) is str and before in locations and now != before:
+                        self.answered(field, locations)
         communication = event.communication
         if communication is not None and (self.waiting or self._unreadable_since):
             self._readable(communication)
@@ -945,10 +968,8 @@ class Supervisor(object):
         rules, enum, _default = conversion
         try:
             return rules(value)
-        except Unreadable as error:
-            raise Unreadable("%s: %s" % (enum, error)) from None
         except Exception as error:
-            raise Unreadable("%s: %s: %s" % (enum, type(error).__name__, error)) from None
+            raise _unreadable_data(enum, error) from None
 
     # ---- output: override to put commands on the middleware ---------------------------
     def send(self, name: str, data: Any) -> bool:
@@ -1051,6 +1072,12 @@ class Supervisor(object):
                     raise Unreadable("%s: cannot store (%s: %s)" % (label, type(error).__name__, error)) from None
             else:
                 setattr(self, field, value)
+
+    @staticmethod
+    def _outside(label: str, value: Any) -> Any:
+        """Received data outside the type of the variable ``label`` (an enum read from the data
+        as it came, which is not one of its names): Unreadable, the event is not delivered."""
+        raise Unreadable("%s: %r is outside its type" % (label, plain(value)))
 
     def _unchanged(self, value: Any) -> None:
         """An uncontrollable event that changes nothing (a message no transition reads)."""
