@@ -19,7 +19,7 @@ import os
 import re
 import sys
 import time
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 from .delivery import Delivery
 from .messages import Unsendable, conforms, fill, received, wire_type
@@ -168,6 +168,7 @@ class Topic(object):
         self.name = name
         self.communications = communications  # the model's communications on it (one type)
         self.events = events
+        self.takes: List[Tuple[str, Any]] = []  # (event, its communication) of a topic the robot publishes
         self.package, self.type_name = wire_type(communications[0])
         self.type: Any = None  # the message class, loaded by the adapter
         self.publisher: Any = None
@@ -395,6 +396,7 @@ class NodeCore(object):
                     topic.communications.append(c)
                 if "message" in events:
                     topic.events.append(events["message"])
+                    topic.takes.append((events["message"].name, c))
                     self.route[events["message"].name] = topic
                 continue
             call = Call(c, events)
@@ -566,10 +568,9 @@ class NodeCore(object):
         than the last one taken from the topic is a duplicate (DDS history given again), ignored."""
         try:
             if stamp is None or self.fresh(topic, stamp):
-                supervisor = self.supervisor
-                deliver = supervisor.deliver
-                for event in topic.events:
-                    deliver(event.name, received(supervisor.COMMUNICATION[event.communication], message), True, stamp)
+                deliver = self.supervisor.deliver
+                for name, communication in topic.takes:
+                    deliver(name, received(communication, message), True, stamp)
                 self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)

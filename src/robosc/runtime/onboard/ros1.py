@@ -45,6 +45,20 @@ def _log(level: str, message: str) -> None:
     {"error": rospy.logerr, "warning": rospy.logwarn}.get(level, rospy.loginfo)(message)
 
 
+class Matching(rospy.SubscribeListener):  # type: ignore[misc]
+    """A command topic's subscribers come and go: how many it has now (``Topic.matched``)."""
+
+    def __init__(self, topic: Any) -> None:
+        self.topic = topic
+
+    def peer_subscribe(self, topic_name: str, topic_publish: Any, peer_publish: Any) -> None:
+        publisher = self.topic.publisher  # None while rospy is still making it: asked then
+        self.topic.matched = publisher.get_num_connections() if publisher is not None else None
+
+    def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+        self.topic.matched = int(num_peers)
+
+
 class SupervisorNode(NodeCore):
     def __init__(self, robot_class: Any, mode: str = "controller", node_name: Optional[str] = None) -> None:
         rospy.init_node(node_name or default_name(robot_class))
@@ -86,7 +100,10 @@ class SupervisorNode(NodeCore):
         if supervising:
             self.text_publishers[BLOCKED_TOPIC] = rospy.Publisher(BLOCKED_TOPIC, self.text_type, queue_size=depth)
         for topic in self.outputs.values():
-            topic.publisher = rospy.Publisher(topic.name, topic.type, queue_size=depth)
+            topic.publisher = rospy.Publisher(
+                topic.name, topic.type, subscriber_listener=Matching(topic), queue_size=depth
+            )
+            topic.matched = topic.publisher.get_num_connections()
         for topic in self.inputs.values():
             if supervising:
                 topic.forward = rospy.Publisher(controller_side(topic.name), topic.type, queue_size=depth)
