@@ -609,13 +609,17 @@ class NodeCore(object):
             return True  # tau, reset, and data events have nothing to send
         if isinstance(place, Topic):
             topic = place
-            silent = self.delivery.held(topic)
+            delivery = self.delivery
+            silent = delivery.held(topic) if delivery.silent or delivery.pending else None
             if silent is not None:  # what went before it may not have arrived: its robot is held
-                if topic.name in self.delivery.silent:
+                if topic.name in delivery.silent:
                     self.warnings("held: %s: %s" % (name, silent), "silent " + name)
                 self.refused = silent
                 return False
-            if self.params["wait_for_listeners"] and self.heard_by(topic) == 0:
+            matched = topic.matched
+            if matched is None:
+                matched = self.heard_by(topic)
+            if matched == 0 and self.params["wait_for_listeners"]:
                 # a message nobody subscribes to is lost, and the supervisor would believe the
                 # robot got it (a robot not up yet, a link down): hold the command instead
                 self.warnings("held: %s: nothing subscribes to %s" % (name, topic.name), "unheard " + name)
@@ -634,7 +638,7 @@ class NodeCore(object):
                         self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
                         return False
                     topic.made = (data, message)
-            self.delivery.sent(name, topic)
+            delivery.sent(name, topic)
             self.publish(topic, message)
             return True
         call = place
