@@ -20,6 +20,7 @@ FEATURES = (
     "quantifier mixing robot and shared state",
     "quantifier reading the robot it is about",
     "q = r / q != r",
+    "one robot singled out (r = bot1)",
     "written-out count, several terms per robot",
     "asymmetric condition",
     "data variable",
@@ -196,6 +197,11 @@ class Conditions:
         return f"count({', '.join(terms)}) {self.draw(st.sampled_from(['<=', '<=', '>=']))} {bound}"
 
     def condition(self, me: tuple[Kind, str] | None, depth: int = 0) -> str:
+        if me is not None and me[1] == "r" and depth == 0 and self.draw(st.integers(0, 4)) == 0:
+            self.features.add("one robot singled out (r = bot1)")
+            one = self.draw(st.sampled_from(me[0].instances()))
+            rest = self.condition(me, depth + 1)
+            return f"(r != {one} and {rest})" if self.draw(st.booleans()) else f"(r = {one} or {rest})"
         choice = self.draw(st.integers(0, 9))
         if choice <= 2 and me is not None:
             return self.robot_atom(*me)

@@ -415,3 +415,71 @@ def test_a_fleet_event_never_allowed_is_said_once_for_the_robots():
     [warning] = [d for d in synthesis_warnings(synthesize_model(check_text(NEVER).model)) if d.code.value == "never-allowed"]
     assert warning.message.startswith("synthesis never allows 'bot1.go' (the same for every robot of bot (bot1 .. bot3))")
     assert "[bot1.b, bot2.a, bot3.a]" in warning.message
+
+
+SINGLED_OUT = """robot Lifted {{
+    component bot[{n}] {{
+        incoming message go with type: none
+        incoming message home with type: none
+        behaviour {{
+            initial marked state depot {{ on request to go goto lift }}
+            state lift {{ on request to go goto top on request to home goto depot }}
+            marked state top {{ on request to home goto depot }}
+        }}
+    }}
+    for r in bot {{
+        requirement r.go needs r.depot => (r = bot1 or count(q in bot: q.lift) < 2)
+        requirement r.go needs r != bot1 or !any(q in bot: q != r and q.top)
+    }}
+}}
+"""
+
+
+def test_one_robot_singled_out_in_a_for_block_is_read_per_instance():
+    model = check_text(SINGLED_OUT.format(n=4)).model
+    assert model is not None
+    texts = sorted(r.description for r in build_network(model).requirements)
+    count = "count(bot1.lift, bot2.lift, bot3.lift, bot4.lift) < 2"
+    assert texts == [
+        "requirement bot1.go needs !(bot2.top or bot3.top or bot4.top)",
+        "requirement bot1.go needs true",  # bot1.depot => (true or ...)
+        f"requirement bot2.go needs bot2.depot => ({count})",  # false or ... folded away
+        "requirement bot2.go needs true",
+        f"requirement bot3.go needs bot3.depot => ({count})",
+        "requirement bot3.go needs true",
+        f"requirement bot4.go needs bot4.depot => ({count})",
+        "requirement bot4.go needs true",
+    ]
+
+
+def test_singled_out_one_robot_the_others_are_still_counted():
+    _, fleet = agree_with_monolithic(SINGLED_OUT.format(n=5), least=3)
+    assert fleet.details["symmetry"].startswith("counted") and "4 agents" in fleet.details["symmetry"], fleet.details
+    assert explicit_agrees(SINGLED_OUT.format(n=4), least=3)
+
+
+def explicit_agrees(text: str, least: int) -> bool:
+    """The counted supervisor of ``text`` allows what the explicit one does, state by state."""
+    network = build_network(check_text(text).model)
+    supervisor = synthesize_explicit(network).details["supervisor"]
+    fleet = synthesize_counted(network, least=least)
+    assert fleet.method == "symmetric", fleet.details.get("symmetry")
+    for state in supervisor.states:
+        for event in network.events:
+            assert fleet.details["supervisor"].allows(event, state) == supervisor.allows(event, state), event.name
+    return True
+
+
+def test_why_a_fleet_is_not_counted_names_the_requirement():
+    fleet = synthesize_counted(build_network(check_text(SINGLED_OUT.format(n=3)).model), least=3)
+    assert fleet.method == "symbolic"
+    assert (
+        "the requirements of 'bot2' differ from those of 'bot1' (requirement bot1.go needs !(bot2.top or bot3.top) "
+        "has no counterpart for 'bot2')"
+    ) in fleet.details["symmetry"]
+
+
+def test_an_instance_of_another_group_cannot_be_singled_out():
+    text = SINGLED_OUT.format(n=3).replace("r != bot1", "r != Lift").replace("    for r in bot", "    component Lift { behaviour { initial marked state up { } } }\n    for r in bot")
+    result = check_text(text)
+    assert result.model is None and any("stands for an instance" in d.message for d in result.diagnostics), result.render()

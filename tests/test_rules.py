@@ -174,6 +174,10 @@ CASES = {
             "-1 is outside the range of 'n'",
         ),
     ],
+    "precedence": [
+        (robot("requirement act needs S.active => S.active and !S.active"), "'=>' binds tighter than 'and'"),
+        (robot("requirement act needs !S.active or S.active => S.active"), "this reads as !S.active or (S.active => S.active)"),
+    ],
     "implicit-start": [
         (
             robot(
@@ -346,6 +350,7 @@ VALID = {
         "datatype enum E from double to { value > 1.0 -> big default -> small }",
         component("variable e: E = small initial marked state a { transition if e = small }"),
     ),
+    "precedence": robot("requirement act needs (S.active => S.active) and !S.active"),
     "range": robot(component("variable n: integer(0..3) = 3 initial marked state a { transition if n > 1 }")),
     "constant": robot(component(OK_STATES, "incoming message d with type: double"), "provide d with 1.0 / (2 - 1.5)"),
 }

@@ -65,6 +65,11 @@ class Code(str, Enum):
     )
     # warnings that catch modelling mistakes
     IMPLICIT_START = "implicit-start", "warning: a guard or requirement reads an enum variable with no initial value"
+    PRECEDENCE = (
+        "precedence",
+        "warning: '=>' stands beside 'and', 'or' or a comparison without parentheses; it binds tighter than "
+        "they do (as in the original tool), which is rarely what is meant",
+    )
     UNCONTROLLABLE_REQUIREMENT = (
         "uncontrollable-requirement",
         "warning: a requirement on a message the robot sends, which the supervisor cannot forbid",

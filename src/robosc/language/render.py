@@ -29,9 +29,11 @@ def _child(e: m.Expr, parent: str, right: bool) -> str:
     needs = level < parent_level or (
         right and level == parent_level and not (isinstance(e, m.Binary) and e.op == parent and parent in ASSOCIATIVE)
     )
-    # "a and b or c" is legal but easy to misread: show and/or groups explicitly.
+    # "a and b or c" is legal but easy to misread: show and/or groups explicitly; and "=>", which
+    # binds tighter than and, or and the comparisons, always in parentheses where it is an operand
     mixed_logic = isinstance(e, m.Binary) and e.op in ("and", "or") and parent in ("and", "or") and e.op != parent
-    return f"({text})" if needs or mixed_logic else text
+    implication = isinstance(e, m.Binary) and e.op == "=>"
+    return f"({text})" if needs or mixed_logic or implication else text
 
 
 def steps(path: tuple[m.Step, ...]) -> str:

@@ -46,6 +46,16 @@ class NotSymmetric(Exception):
     robots: str = ""
 
 
+class Differ(NotSymmetric):
+    """The agents of ``group`` are copies, but their requirements say different things of them
+    (one singled out, ``r != bot1``): ``parts``, the agents whose requirements say the same."""
+
+    def __init__(self, message: str, group: Group, parts: list[list[Agent]]) -> None:
+        super().__init__(message)
+        self.group = group
+        self.parts = parts
+
+
 @record(eq=False)
 class Agent:
     component: m.Component
@@ -624,11 +634,30 @@ def counted(network: Network, least: int = 2) -> Counted:
     found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
         raise NotSymmetric(f"no {least} components are copies of each other")
-    try:
-        return _counted(network, found)
-    except NotSymmetric as reason:
-        reason.robots = "; ".join(_robots(group) for group in found)
-        raise
+    copies = "; ".join(_robots(group) for group in found)
+    while True:  # each round splits a group into smaller ones, or ends
+        try:
+            return _counted(network, found)
+        except Differ as differ:  # counted where their requirements say the same: the others apart
+            found = _split(found, differ, least)
+            if not found:
+                differ.robots = copies
+                raise
+        except NotSymmetric as reason:
+            reason.robots = copies
+            raise
+
+
+def _split(found: list[Group], differ: Differ, least: int) -> list[Group]:
+    """``found`` with ``differ.group`` split into its parts of at least ``least`` agents (the
+    others tracked each on its own)."""
+    group = differ.group
+    parts = [part for part in differ.parts if len(part) >= least]
+    kept = [g for g in found if g.name != group.name]  # (``_counted`` works on explored copies)
+    for number, part in enumerate(parts, 1):
+        name = group.name if len(parts) == 1 else f"{group.name}_{number}"
+        kept.append(Group(name, tuple(part), {id(a): _map(a, part[0]) for a in part}))
+    return kept
 
 
 def _robots(group: Group) -> str:
@@ -762,8 +791,9 @@ def _span(requirement: Requirement) -> Any:
 def _check_requirements(network: Network, translator: Translator, group: Group) -> dict[int, m.Expr]:
     """Each agent's requirements say of it what the representative's say of the representative;
     the representative's templates, by requirement (``id``)."""
-    expected = None
     templates: dict[int, m.Expr] = {}
+    by_texts: dict[tuple[tuple[str, str], ...], list[Agent]] = {}
+    described: dict[tuple[str, str], str] = {}  # (event, template) -> the requirement's text
     for agent in group.agents:
         mapping = group.to_rep[id(agent)]
         mine = {
@@ -771,14 +801,23 @@ def _check_requirements(network: Network, translator: Translator, group: Group) 
             for e in agent.events
             for r in network.requirements_on(e)
         }
-        texts = sorted((mapping[r.event].name, render(template)) for r, template in mine.values())
-        if expected is None:
-            expected = texts
+        texts = tuple(sorted((mapping[r.event].name, render(template)) for r, template in mine.values()))
+        for r, template in mine.values():
+            described.setdefault((mapping[r.event].name, render(template)), r.description)
+        if not by_texts:
             templates = {key: template for key, (_, template) in mine.items()}
-        elif texts != expected:
-            raise NotSymmetric(
-                f"the requirements of '{agent.component.name}' differ from those of '{group.rep.component.name}'"
-            )
+        by_texts.setdefault(texts, []).append(agent)
+    if len(by_texts) > 1:
+        first, other = list(by_texts)[:2]
+        agent = by_texts[other][0]
+        differs = sorted(set(first) ^ set(other))
+        lacking = group.rep.component.name if differs[0] in other else agent.component.name
+        raise Differ(
+            f"the requirements of '{agent.component.name}' differ from those of '{group.rep.component.name}' "
+            f"({described[differs[0]]} has no counterpart for '{lacking}')",
+            group,
+            list(by_texts.values()),
+        )
     return templates
 
 

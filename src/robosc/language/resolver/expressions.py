@@ -11,11 +11,15 @@ from robosc.language import syntax as s
 from robosc.language import types as t
 from robosc.language.codes import Code
 from robosc.language.diagnostics import closest
+from robosc.language.formatter import expr as show
 from robosc.language.resolver import instances as inst
 from robosc.language.resolver.reporter import Reporter
 from robosc.language.resolver.tables import ComponentTables
 from robosc.language.source import Span
 from robosc.record import record
+
+# the operators '=>' binds tighter than (LANGUAGE.md section 2), where it surprises
+LOOSER_THAN_IMPLIES = frozenset(["or", "and", "=", "!=", ">", ">=", "<", "<="])
 
 # Finds a component by the name used in an expression: its tables, or a
 # message saying why it cannot be used there, or None when no such component exists.
@@ -45,6 +49,8 @@ class ExpressionResolver:
         self.components = components
         self.component_names = component_names
         self.groups = groups if groups is not None else {}  # bot -> [bot1, .., botN]
+        # an implication that is an operand of a looser operator -> how it grouped, for its type error
+        self.hints: dict[int, str] = {}
         self.bound: dict[str, str] = {}  # instance variables (``q`` in ``all(q in bot: ...)``) -> instance
 
     # -- instances -------------------------------------------------------------------
@@ -134,15 +140,30 @@ class ExpressionResolver:
         return simplify.join("and" if kind == "all" else "or", terms, syntax.span)
 
     def _same_instance(self, syntax: s.Binary) -> m.Expr | None:
-        """``q = r`` / ``q != r`` between instance variables: decided here, or None when ``syntax``
-        compares something else."""
-        sides = [syntax.left, syntax.right]
-        if syntax.op not in ("=", "!=") or not all(
-            isinstance(e, s.Access) and e.head is not None and not e.steps and e.head.text in self.bound for e in sides
-        ):
+        """``q = r`` / ``q != r`` between instance variables, or ``r = bot1`` / ``r != bot1``
+        between one and an instance of its group (one robot singled out): decided here, or None
+        when ``syntax`` compares something else."""
+        if syntax.op not in ("=", "!="):
             return None
-        left, right = (self.bound[e.head.text] for e in sides)  # type: ignore[union-attr]
-        return simplify.literal((left == right) == (syntax.op == "="), syntax.span)
+        names = [e.head.text if isinstance(e, s.Access) and e.head is not None and not e.steps else None for e in (syntax.left, syntax.right)]
+        if None in names or not any(name in self.bound for name in names):
+            return None
+        instances = []
+        for name in names:
+            assert name is not None
+            if name in self.bound:
+                instances.append(self.bound[name])
+                continue
+            groups = [g for g, members in self.groups.items() if name in members]
+            bound = next(self.bound[n] for n in names if n in self.bound)
+            if not groups or bound not in self.groups[groups[0]]:
+                return None  # not an instance of the same group: said where it resolves as a value
+            instances.append(name)
+        return simplify.literal((instances[0] == instances[1]) == (syntax.op == "="), syntax.span)
+
+    def _an_instance(self, instance: str) -> str:
+        """The first instance of the group ``instance`` is one of (for hints)."""
+        return next((members[0] for members in self.groups.values() if instance in members and members), instance)
 
     # -- entry points --------------------------------------------------------------
     def condition(self, syntax: s.Expr, context: ExprContext, what: str) -> m.Expr:
@@ -174,15 +195,59 @@ class ExpressionResolver:
             same = self._same_instance(syntax) if self.bound else None
             if same is not None:
                 return same
+            grouping = self._surprising(syntax)
+            if grouping is not None:  # a type error of the implication itself says how it grouped
+                self.hints[id(grouping[3])] = grouping[2]
             left = self.expr(syntax.left, context)
             right = self.expr(syntax.right, context)
             result = t.binary_type(syntax.op, left.type, right.type)
-            return m.Binary(syntax.op, left, right, self._checked(result, syntax.span), syntax.span)
+            if grouping is not None:
+                if self.hints.pop(id(grouping[3]), None) is None:  # said with the implication's error
+                    return m.Binary(syntax.op, left, right, m.ERROR, syntax.span)
+                if isinstance(result, str):  # the type error the grouping leads to
+                    self.reporter.error(syntax.span, result, Code.TYPES, grouping[2])
+                    return m.Binary(syntax.op, left, right, m.ERROR, syntax.span)
+                self.reporter.warning(syntax.span, grouping[0], Code.PRECEDENCE, grouping[1])
+            node = m.Binary(syntax.op, left, right, self._checked(result, syntax.span, syntax), syntax.span)
+            if (
+                self.bound
+                and syntax.op in ("and", "or", "=>")
+                and (simplify.boolean_constant(left) is not None or simplify.boolean_constant(right) is not None)
+            ):
+                return simplify.fold(node)  # inside 'for' or a quantifier: a decided 'r != bot1' folded away
+            return node
         return self.access(syntax, context)
 
-    def _checked(self, result: m.DataType | str, span: Span) -> m.DataType:
+    @staticmethod
+    def _surprising(syntax: s.Binary) -> tuple[str, str, str, s.Binary] | None:
+        """Where ``=>`` is an operand of a looser operator (and, or, a comparison) without
+        parentheses: how robosc reads it, the parentheses to write (for a warning, and for the
+        type error it may lead to), and the implication."""
+        if syntax.op not in LOOSER_THAN_IMPLIES:
+            return None
+        for side in (syntax.left, syntax.right):
+            if not (isinstance(side, s.Binary) and side.op == "=>"):
+                continue
+            a, b = show(side.left), show(side.right)
+            other = show(syntax.right if side is syntax.left else syntax.left)
+            if side is syntax.left:
+                read, meant = f"({a} => {b}) {syntax.op} {other}", f"{a} => ({b} {syntax.op} {other})"
+            else:
+                read, meant = f"{other} {syntax.op} ({a} => {b})", f"({other} {syntax.op} {a}) => {b}"
+            said = f"'=>' binds tighter than '{syntax.op}': this reads as {read} (as in the original tool)"
+            return (
+                said,
+                f"write the parentheses: {meant} if that is what you mean, or {read} to keep this reading "
+                "and silence this warning",
+                f"{said}; write the parentheses: {meant}",
+                side,
+            )
+        return None
+
+    def _checked(self, result: m.DataType | str, span: Span, syntax: s.Expr | None = None) -> m.DataType:
         if isinstance(result, str):
-            self.reporter.error(span, result, Code.TYPES)
+            hint = self.hints.pop(id(syntax), None) if syntax is not None else None
+            self.reporter.error(span, result, Code.TYPES, hint)
             return m.ERROR
         return result
 
@@ -199,7 +264,8 @@ class ExpressionResolver:
                     syntax.span,
                     f"'{name}' stands for an instance, which is not a value",
                     Code.INSTANCES,
-                    f"name one of its states ('{name}.<state>') or compare it with another instance ('{name} != r')",
+                    f"name one of its states ('{name}.<state>') or compare it with another instance "
+                    f"('{name} != {'q' if name != 'q' else 'r'}', or '{name} != {self._an_instance(self.bound[name])}')",
                 )
                 return m.Invalid(syntax.span)
             instance = self.bound[name]

@@ -6,7 +6,7 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from robosc.language.codes import Code
-from robosc.language.diagnostics import Diagnostic, did_you_mean, error
+from robosc.language.diagnostics import Diagnostic, did_you_mean, error, warning
 from robosc.language.source import Span
 
 
@@ -23,6 +23,9 @@ class Reporter:
 
     def error(self, span: Span, message: str, code: Code, hint: str | None = None) -> None:
         self.diagnostics.append(error(span, message, code, hint))
+
+    def warning(self, span: Span, message: str, code: Code, hint: str | None = None) -> None:
+        self.diagnostics.append(warning(span, message, code, hint))
 
     def unknown(
         self,
