@@ -46,15 +46,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 import revision as revisions  # noqa: E402
-from warehouse_drivers import (  # noqa: E402
-    DRIVER_ROS1,
-    DRIVER_ROS2,
-    IN_THE_AISLE,
-    ROS1_KILLED_THREE_WAYS,
-    ROS1_WORLD,
-    kill_when_told,
-    stop_and_kill,
-)
+import warehouse_drivers as drivers  # noqa: E402
 from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, follow, forbidden, take_driver  # noqa: E402
 
 PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
@@ -146,16 +138,29 @@ def killed_three_ways(package: tuple[Path, str], work: Path) -> dict[str, Any]:
             }[moment]
             wire.run(60, condition)
             node.send_signal(signal.SIGKILL)
-            node.wait(10)
-            wire.run(1.0)
-            done = gos(world)
-            node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
-            if not wire.run(20, lambda done=done: gos(world) >= done + 6):
-                frozen += 1
-        found, checked = forbidden(log_of(log), world.received, world.sent)
-        return {"forbidden": len(found), "commands": checked, "frozen restarts": frozen}
+            node, froze = restarted(graph, package, log, wire, world, node)
+            frozen += froze
+        return killed(log, world, frozen)
     finally:
         graph.close()
+
+
+def restarted(
+    graph: Graph, package: tuple[Path, str], log: Path, wire: Ros2Wire, world: World, dead: Any
+) -> tuple[Any, bool]:
+    """The coordinator ``dead`` (killed) down a second (the answers due are sent meanwhile), then
+    started again with the same command line: the new process, and whether nothing moved in the
+    20 s after."""
+    dead.wait(10)
+    wire.run(1.0)
+    done = gos(world)
+    node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+    return node, not wire.run(20, lambda: gos(world) >= done + 6)
+
+
+def killed(log: Path, world: World, frozen: int) -> dict[str, Any]:
+    found, checked = forbidden(log_of(log), world.received, world.sent)
+    return {"forbidden": len(found), "commands": checked, "frozen restarts": frozen}
 
 
 def signature(folder: Path, pattern: str) -> tuple[Any, ...]:
@@ -202,14 +207,9 @@ def killed_in_the_window(package: tuple[Path, str], work: Path, kills: int = 5) 
                 wire.run(0.05)
             if node.poll() is None:  # nothing written in 30 s
                 node.kill()
-            node.wait(10)
-            wire.run(1.0)  # down: the answers due are sent meanwhile
-            done = gos(world)
-            node = graph.start(package, *PARAMS, "-p", f"event_log:={log}")
-            if not wire.run(20, lambda done=done: gos(world) >= done + 6):
-                frozen += 1
-        found, checked = forbidden(log_of(log), world.received, world.sent)
-        return {"forbidden": len(found), "commands": checked, "frozen restarts": frozen}
+            node, froze = restarted(graph, package, log, wire, world, node)
+            frozen += froze
+        return killed(log, world, frozen)
     finally:
         graph.close()
 
@@ -222,14 +222,14 @@ def driver_killed(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     lines: list[dict[str, Any]] = []
     try:
         driver = subprocess.Popen(
-            [sys.executable, "-c", DRIVER_ROS2, str(graph.domain)], env=graph.env, stdout=subprocess.PIPE, text=True
+            [sys.executable, "-c", drivers.DRIVER_ROS2, str(graph.domain)], env=graph.env, stdout=subprocess.PIPE, text=True
         )
         graph.processes.append(driver)  # type: ignore[arg-type]
 
         follow(driver.stdout, lines)
         graph.start(package, *PARAMS, "-p", f"event_log:={log}")
-        wire.run(60, lambda: bool(lines) and lines[-1]["where"] in IN_THE_AISLE)
-        stopped = stop_and_kill(driver)
+        wire.run(60, lambda: bool(lines) and lines[-1]["where"] in drivers.IN_THE_AISLE)
+        stopped = drivers.stop_and_kill(driver)
         time.sleep(0.3)
         wire.run(25)
         take_driver(world, lines)
@@ -379,7 +379,7 @@ def ros1_world(
     control = work / "control"
     script = (
         f"import sys\nsys.path.insert(0, {str(ROS1_HELPERS.parent)!r})\nfrom ros1_client import *\n"
-        + ROS1_WORLD.format(tests=str(ROOT / "tests"), robots=robots, twice=twice, control=str(control))
+        + drivers.ROS1_WORLD.format(tests=str(ROOT / "tests"), robots=robots, twice=twice, control=str(control))
         + body
     )
     return master.start([ROS1_PYTHON, "-c", script], stdout=subprocess.PIPE, text=True)
@@ -396,8 +396,8 @@ def ros1_killed_three_ways(package: Path, work: Path) -> dict[str, Any]:
     log = work / "killed.jsonl"
     try:
         node = master.node(package, log)
-        world = ros1_world(master, work, False, ROS1_KILLED_THREE_WAYS.format(wait=20))
-        kill_when_told(work / "control", world, node, lambda: master.node(package, log))
+        world = ros1_world(master, work, False, drivers.ROS1_KILLED_THREE_WAYS.format(wait=20))
+        drivers.kill_when_told(work / "control", world, node, lambda: master.node(package, log))
         result = ros1_result(world)
         found, checked = forbidden(log_of(log), result["received"], result["sent"])
         return {"forbidden": len(found), "commands": checked, "frozen restarts": result.get("frozen", "?")}
@@ -411,7 +411,7 @@ def ros1_driver_killed(package: Path, work: Path) -> dict[str, Any]:
     killed = work / "killed"
     lines: list[dict[str, Any]] = []
     try:
-        driver = master.start([ROS1_PYTHON, "-c", DRIVER_ROS1], stdout=subprocess.PIPE, text=True)
+        driver = master.start([ROS1_PYTHON, "-c", drivers.DRIVER_ROS1], stdout=subprocess.PIPE, text=True)
         follow(driver.stdout, lines)
         master.node(package, log)
         body = f"""
@@ -422,9 +422,9 @@ with lock:
 """
         world = ros1_world(master, work, False, body, robots=("bot1", "bot3"))
         end = time.monotonic() + 60
-        while not (lines and lines[-1]["where"] in IN_THE_AISLE) and time.monotonic() < end:
+        while not (lines and lines[-1]["where"] in drivers.IN_THE_AISLE) and time.monotonic() < end:
             time.sleep(0.01)
-        stopped = stop_and_kill(driver)
+        stopped = drivers.stop_and_kill(driver)
         killed.write_text("killed")
         result = ros1_result(world)
         everything = World()

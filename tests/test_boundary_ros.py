@@ -84,6 +84,7 @@ def test_ros2_a_controller_killed_with_the_stop_held_does_not_move_after_its_res
     ros2.spin(0.5)
     node.send_signal(signal.SIGKILL)
     node.wait(10)
+    ros2.spin(0.5)  # what the killed node sent before it died, taken off the wire
     robot.cmd.clear()
     again = ros2.start(package, **params)  # the same command line, no extra parameter
     ros2.spin(8.0)
