@@ -616,9 +616,11 @@ class NodeCore(object):
                     self.warnings("held: %s: %s" % (name, silent), "silent " + name)
                 self.refused = silent
                 return False
+            # the subscribers as the middleware last told without being asked (where it tells),
+            # else asked now: whether the command arrived is told by delivery, which asks
             matched = topic.matched
             if matched is None:
-                matched = self.heard_by(topic)
+                matched = self.listeners(topic)
             if matched == 0 and self.params["wait_for_listeners"]:
                 # a message nobody subscribes to is lost, and the supervisor would believe the
                 # robot got it (a robot not up yet, a link down): hold the command instead
@@ -741,13 +743,6 @@ class NodeCore(object):
     def listeners(self, topic: Topic) -> int:
         """How many subscribers ``topic`` (a command topic of the robot) has now."""
         return self.subscribers(topic.publisher)
-
-    def heard_by(self, topic: Topic) -> int:
-        """How many subscribers ``topic`` has, as the middleware last told without being asked
-        (where it tells: ROS 2), else asked now. Whether a command sent arrived is told by
-        ``delivery``, which asks: this is only the look before a command, kept off the middleware."""
-        matched = topic.matched
-        return matched if matched is not None else self.listeners(topic)
 
     def text_subscribers(self, topic_name: str) -> int:
         """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""

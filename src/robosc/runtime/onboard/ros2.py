@@ -173,7 +173,7 @@ class SupervisorNode(Node, NodeCore):
 
     @staticmethod
     def matching(topic: Any) -> Callable[[Any], None]:
-        """The publisher's matched event: how many subscribers ``topic`` has now (``heard_by``)."""
+        """The publisher's matched event: how many subscribers ``topic`` has now (``Topic.matched``)."""
 
         def matched(status: Any) -> None:
             topic.matched = int(status.current_count)
