@@ -42,6 +42,21 @@ def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
         session.exitstatus = pytest.ExitCode.TESTS_FAILED
 
 
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]) -> Any:
+    """A failing test that started ROS processes shows what they printed (the nodes' logs are
+    otherwise lost with the test's temporary folder, and a CI failure must be readable)."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.when != "call" or not report.failed:
+        return
+    for name in ("ros1", "ros2"):
+        middleware = getattr(item, "funcargs", {}).get(name)
+        processes = getattr(middleware, "processes", None)
+        if processes is not None:
+            report.sections.append(("processes of " + name, processes.output()))
+
+
 @pytest.fixture(autouse=True)
 def _ros_home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Every test has a ROS home of its own: the nodes it starts log there (never in the user's

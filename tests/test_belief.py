@@ -452,3 +452,41 @@ def test_a_report_asked_for_before_a_command_went_out_is_not_taken() -> None:
     assert node.asked_for.count("bot1") == 3
     node.report("bot1", True, "charging")
     assert "bot1" not in node.supervisor.unsure()
+
+
+def test_a_report_asked_for_before_an_answer_moved_its_component_is_not_taken() -> None:
+    """The door's driver is asked; door_opened comes (the door may be open, or closed or closing
+    if it was spurious); then the driver's answer, closed, given before door_opened was sent:
+    not taken, asked again. The answer to the second request is taken."""
+    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, report_interval=0.01)
+    node.housekeeping()
+    assert "Door" in node.asked_for
+    node.receive(node.inputs["door_opened"], None)
+    assert node.supervisor.unconfirmed["a16_Door"] == ("closed", "open", "closing")
+    node.report("Door", True, "closed")
+    assert node.supervisor.unconfirmed["a16_Door"] == ("closed", "open", "closing")
+    assert any("report of Door not taken: it changed since it was asked" in text for _, text in node.logs)
+    time.sleep(0.02)
+    node.housekeeping()  # asked again
+    assert node.asked_for.count("Door") == 2
+    node.report("Door", True, "open")
+    assert node.supervisor.snapshot()["automata"]["Door"] == "open"
+
+
+def test_a_report_asked_for_before_an_action_goal_went_out_is_not_taken() -> None:
+    """An action goal moves its component as a topic command does: the base's driver, asked
+    before navigate's goal went out, may tell where the base was before it (at the dock)."""
+    node = Node("examples/shelf_picker.rscd", seed=1, report_interval=60.0)
+    node.supervisor.send = lambda name, data: True  # type: ignore[method-assign]  # the goal goes out
+    node.housekeeping()
+    for component, where in (("Arm", "stowed"), ("Tray", "empty")):
+        node.report(component, True, where)
+    node.supervisor.unconfirm({"a5_Base": ("at_dock", "at_shelf")}, "whatever reason")
+    node.asked.clear()
+    node.housekeeping()  # the base's driver asked
+    node.supervisor.know("a5_Base", "at_dock")  # an answer to an earlier request
+    assert node.supervisor.perform("navigate.c_trigger")
+    node.supervisor.unconfirm({"a5_Base": ("at_dock", "to_shelf")}, "the goal may not have arrived")
+    node.report("Base", True, "at_dock")
+    assert node.supervisor.unconfirmed["a5_Base"] == ("at_dock", "to_shelf")
+    assert any("report of Base not taken" in text for _, text in node.logs)

@@ -54,7 +54,6 @@ class Delivery(object):
         self.sending: List[Tuple[str, Any, Any, Dict[str, Any], float]] = []
         self.pending: List[Pending] = []
         self.silent: Dict[str, float] = {}  # topic -> since when a subscriber has not acknowledged (ROS 2)
-        self.commands: Dict[str, int] = {}  # component -> how many commands that changed it went out
 
     def sent(self, event: str, topic: Any) -> None:
         """The node is putting ``event`` on ``topic`` (before the event's effect)."""
@@ -120,8 +119,6 @@ class Delivery(object):
             changed[attribute] = _either(unsure.get(attribute, (old,)), supervisor.unconfirmed.get(attribute, (new,)))
         if not after:
             return
-        for component in set(supervisor.COMPONENT_OF[attribute] for attribute in after):
-            self.commands[component] = self.commands.get(component, 0) + 1
         if self.node.acknowledges:  # ROS 2: unconfirmed until acknowledged
             supervisor.unconfirm(changed, "%s on its way" % (event,))
         versions = dict((attribute, supervisor.versions.get(attribute, 0)) for attribute in after)

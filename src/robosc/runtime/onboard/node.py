@@ -250,8 +250,8 @@ class NodeCore(object):
         self.health_seen: Any = None  # (supervisor.health_changes, commands on their way) when last looked
         self.report_clients: Dict[str, Any] = {}  # component -> the adapter's client of its report service
         self.asked: Dict[str, float] = {}  # component -> when its driver was last asked for its state
-        # component -> how many commands to it had gone out when its driver was last asked: a report
-        # asked for before a command went out may tell where it was before the command arrived
+        # component -> how many events had changed it when its driver was last asked
+        # (supervisor.changes): a report asked for before one may tell where it was before it
         self.asked_after: Dict[str, int] = {}
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
         if self.supervisor.unconfirmed:
@@ -323,7 +323,7 @@ class NodeCore(object):
             client = self.report_clients.get(component)
             if client is not None:
                 try:
-                    self.asked_after[component] = self.delivery.commands.get(component, 0)
+                    self.asked_after[component] = self.supervisor.changes.get(component, 0)
                     if self.ask_report(component, client):
                         self.asked[component] = now
                 except Exception as error:
@@ -337,11 +337,11 @@ class NodeCore(object):
         if not success:
             self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
             return
-        if self.delivery.commands.get(component, 0) != self.asked_after.get(component, 0):
-            # asked for before a command to it went out: its driver may have answered before the
-            # command arrived; asked again (once none is on its way: ask_reports)
+        if self.supervisor.changes.get(component, 0) != self.asked_after.get(component, 0):
+            # asked for before a command to it went out or an answer moved it: its driver may have
+            # answered before that; asked again (once no command is on its way: ask_reports)
             self.asked.pop(component, None)
-            self.log("info", "report of %s not taken: a command to it went out since it was asked" % (component,))
+            self.log("info", "report of %s not taken: it changed since it was asked (a command or an answer)" % (component,))
             return
         why = self.supervisor.confirm(component, message)
         if why is None:

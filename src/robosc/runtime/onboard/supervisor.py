@@ -226,6 +226,12 @@ def _unreadable_data(enum: str, error: Exception) -> Unreadable:
     return Unreadable("%s: %s: %s" % (enum, type(error).__name__, error))
 
 
+def _moved(new: Any, old: Any) -> bool:
+    """Whether a field that is now ``new`` (another object than ``old``) changed: its value, or
+    the values it may have (a new Unknown is made only when they change)."""
+    return type(new) is not type(old) or type(new) is Unknown or new != old
+
+
 def _fits(check: Any, value: Any) -> bool:
     """Whether ``value`` is inside a field's domain (``check`` as the generated code gives it:
     None for anything, a type name, ("integer", low, high), or the names an enum or a
@@ -383,6 +389,9 @@ class Supervisor(object):
         # answers it: answered(field, those locations); the robot had the command that put it there
         self.answered: Optional[Callable[[str, Tuple[str, ...]], None]] = None
         self.skew = 0.0  # seconds a robot's clock may be behind this one
+        # while watching, per component: how many events (commands, triggers, answers, data) changed
+        # its fields; a driver's report asked for before one of them may tell where it was before
+        self.changes: Dict[str, int] = {}
         self.reset(confirmed)
 
     def reset(self, confirmed: bool = True) -> None:
@@ -656,9 +665,14 @@ class Supervisor(object):
         name = perform(data) if data is not None else perform()
         if name is not None:
             now = time.time()
+            changes = self.changes
             for index, attribute in self.TRACKED:
-                if getattr(self, attribute) is not before[index]:
+                new, old = getattr(self, attribute), before[index]
+                if new is not old:
                     self.commanded[attribute] = now
+                    if _moved(new, old):
+                        component = self.COMPONENT_OF[attribute]
+                        changes[component] = changes.get(component, 0) + 1
         return name
 
     def _permitted(self) -> Tuple[Callable[..., Optional[str]], ...]:
@@ -871,6 +885,12 @@ class Supervisor(object):
         self._dirty = True
         if self.watching:
             index = self.INDEX
+            changes = self.changes
+            for place, attribute in self.TRACKED:
+                new, old = getattr(self, attribute), saved[place]
+                if new is not old and _moved(new, old):
+                    component = self.COMPONENT_OF[attribute]
+                    changes[component] = changes.get(component, 0) + 1
             if self.commanded:
                 for attribute in list(self.commanded):  # an answer came: no longer waiting for one
                     if getattr(self, attribute) is not saved[index[attribute]]:
