@@ -490,3 +490,33 @@ def test_a_report_asked_for_before_an_action_goal_went_out_is_not_taken() -> Non
     node.report("Base", True, "at_dock")
     assert node.supervisor.unconfirmed["a5_Base"] == ("at_dock", "to_shelf")
     assert any("report of Base not taken" in text for _, text in node.logs)
+
+
+def test_a_message_sent_after_the_driver_was_asked_is_taken_when_it_comes_after_the_report() -> None:
+    """The stop's driver is asked; the button is pressed (stop stamped after the request); the
+    report (in_service, given before the press) is handled first, then stop: taken, stopped.
+    (CI once saw it ignored as 'stamped before the command it would answer': the report's
+    arrival counted as the command.)"""
+    node = Node("examples/line_follower.rscd", rate=20.0, seed=1, report_interval=60.0)
+    feed(node)
+    asked = time.time()
+    node.housekeeping()  # the stop's driver is asked
+    pressed = asked + 0.001
+    time.sleep(0.01)
+    node.report("EmergencyStop", True, "in_service")
+    node.receive(node.inputs["/emergency_stop/stop"], None, pressed)
+    assert node.supervisor.snapshot()["automata"]["EmergencyStop"] == "stopped"
+    assert set(moves(node)) == {0.0}  # halt only
+
+
+def test_a_message_sent_before_the_driver_was_asked_is_in_its_report() -> None:
+    """A stop stamped before the driver was asked, coming after its report: the report told where
+    the stop is after it (a copy of an old message, given again): ignored."""
+    node = Node("examples/line_follower.rscd", rate=20.0, seed=1, report_interval=60.0)
+    feed(node)
+    pressed = time.time() - 5.0
+    node.housekeeping()
+    node.report("EmergencyStop", True, "in_service")
+    node.receive(node.inputs["/emergency_stop/stop"], None, pressed)
+    assert node.supervisor.snapshot()["automata"]["EmergencyStop"] == "in_service"
+    assert node.supervisor.ignored == {"stop": 1}

@@ -253,6 +253,9 @@ class NodeCore(object):
         # component -> how many events had changed it when its driver was last asked
         # (supervisor.changes): a report asked for before one may tell where it was before it
         self.asked_after: Dict[str, int] = {}
+        # component -> when (this wall clock) its driver was first asked since its last report came:
+        # an answer stamped later may not be in the report, and is taken as new
+        self.asked_since: Dict[str, float] = {}
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
         if self.supervisor.unconfirmed:
             log(
@@ -323,7 +326,9 @@ class NodeCore(object):
             client = self.report_clients.get(component)
             if client is not None:
                 try:
-                    self.asked_after[component] = self.supervisor.changes.get(component, 0)
+                    if component not in self.asked_since:  # the first request of a round
+                        self.asked_since[component] = time.time()
+                        self.asked_after[component] = self.supervisor.changes.get(component, 0)
                     if self.ask_report(component, client):
                         self.asked[component] = now
                 except Exception as error:
@@ -337,13 +342,14 @@ class NodeCore(object):
         if not success:
             self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
             return
+        since = self.asked_since.pop(component, None)
         if self.supervisor.changes.get(component, 0) != self.asked_after.get(component, 0):
             # asked for before a command to it went out or an answer moved it: its driver may have
             # answered before that; asked again (once no command is on its way: ask_reports)
             self.asked.pop(component, None)
             self.log("info", "report of %s not taken: it changed since it was asked (a command or an answer)" % (component,))
             return
-        why = self.supervisor.confirm(component, message)
+        why = self.supervisor.confirm(component, message, since)
         if why is None:
             self.log("info", "%s confirmed by its driver: %s" % (component, message))
         else:

@@ -508,11 +508,12 @@ class Supervisor(object):
         setattr(self, attribute, value)
         self._dirty = True
 
-    def confirm(self, component: str, report: Any) -> Optional[str]:
+    def confirm(self, component: str, report: Any, since: Optional[float] = None) -> Optional[str]:
         """A report of where ``component`` is, from its driver: a location name, or an object
         with ``state`` (the location) and values of its variables by name. Taken (None) when
         every value is one the component may have now; else nothing changes, and why is
-        returned. Variables it does not give stay as they are."""
+        returned. Variables it does not give stay as they are. ``since``: when (this wall clock)
+        the driver was asked; an answer stamped later may not be in the report: it is taken."""
         fields = self.COMPONENTS.get(component)
         if fields is None:
             return "no component %s" % (component,)
@@ -544,7 +545,8 @@ class Supervisor(object):
         for attribute, value in values.items():
             self.know(attribute, Data.wrap(value) if isinstance(value, (dict, list)) else value)
             if self.watching and self.awaited(attribute):
-                self.commanded[attribute] = time.time()  # as reported: waiting for its answer from now
+                # as reported: waiting for its answer from when the driver was asked
+                self.commanded[attribute] = since if since is not None else time.time()
             else:
                 self.commanded.pop(attribute, None)
         return None
