@@ -15,9 +15,11 @@ The scans alternate between a wall on the right and none, so that the node's sta
 with every message (as a robot's does while it drives). Then, for each, what it does to the robot's storage in steady operation: the ``fsync`` /
 ``fdatasync`` / ``sync*`` / ``msync`` calls per message (counted with strace, in a run of its
 own, where strace is installed) and the bytes it made the kernel write to storage
-(``/proc/PID/io``), with the writes per hour of a line follower deciding 20 times a second.
+(``/proc/PID/io``), with the writes per hour of a line follower deciding 20 times a second; and
+the bytes written in ``--steady`` seconds of steady operation (a scan every 50 ms, 20 decisions
+a second, after 10 s to settle), per hour.
 
-    python benchmarks/relay.py [--samples 400] [--ros 2 1] [--baseline 5fa21e9] [--rate 0.01]
+    python benchmarks/relay.py [--samples 400] [--ros 2 1] [--baseline 5fa21e9] [--rate 0.01] [--steady 60]
 
 With ``--baseline REV`` that revision's generated node runs in the same rounds. Needs robosc,
 rclpy (the ros2 extra) and, for ROS 1, Debian's rospy for /usr/bin/python3; not the test extras.
@@ -370,7 +372,29 @@ def us(values: list[float], q: float | None = None) -> float:
     return ordered[min(len(ordered) - 1, round(q / 100 * (len(ordered) - 1)))] * 1e6
 
 
-def measure(ros: int, samples: int, gap: float, rounds: int, baseline: str | None, work: Path) -> list[dict[str, Any]]:
+def steady_writes(mw: Middleware, build: Any, seconds: float) -> tuple[int, float]:
+    """A node behind a robot sending a scan every 50 ms (20 Hz, each waiting for its command),
+    for 10 s to settle and then ``seconds``: the bytes it made the kernel write to storage in
+    those ``seconds``, and for how long that was."""
+    command = build(mw.work / f"{time.monotonic_ns()}.inside")
+    node = mw.start(command)
+    robot_code = ROBOT_ROS2 if mw.ros == 2 else ROBOT_ROS1
+    time.sleep(1.0)
+    samples = int((10 + seconds) * 20 * 2)  # more than it can send: it is stopped
+    robot = mw.start([mw.python, "-c", robot_code, str(mw.work / "steady.trips"), str(samples), "0.05"])
+    time.sleep(10)
+    start, before = time.monotonic(), storage_writes(node.pid)
+    time.sleep(seconds)
+    after, lasted = storage_writes(node.pid), time.monotonic() - start
+    for process in (robot, node):
+        kill_group(process)
+        mw.processes.remove(process)
+    return (after - before if before >= 0 and after >= 0 else -1), lasted
+
+
+def measure(
+    ros: int, samples: int, gap: float, rounds: int, baseline: str | None, work: Path, steady: float = 0.0
+) -> list[dict[str, Any]]:
     mw = Middleware(ros, work)
     try:
         subjects: list[tuple[str, Any]] = []
@@ -391,6 +415,9 @@ def measure(ros: int, samples: int, gap: float, rounds: int, baseline: str | Non
                 entry["trips"] += found["trips"]
                 entry["written"] += found["written"] or 0
                 entry["messages"] += len(found["trips"])
+        for label, build in subjects:  # storage in steady operation: a scan every 50 ms for minutes
+            if steady > 0:
+                results[label]["steady"] = steady_writes(mw, build, steady)
         if shutil.which("strace"):
             for label, build in subjects:
                 found = round_of(mw, build, min(100, samples), gap, strace=True)
@@ -402,12 +429,23 @@ def measure(ros: int, samples: int, gap: float, rounds: int, baseline: str | Non
 
 
 def table(rows: list[dict[str, Any]]) -> str:
+    steady_lines = [
+        "",
+        "In steady operation (a scan every 50 ms, after 10 s to settle):",
+        "",
+        "| ROS | node | measured for | bytes to storage | bytes to storage per hour |",
+        "|---|---|---|---|---|",
+    ]
     lines = [
         "| ROS | node | inside the node, us: median (p99) | round trip, us: median (p99) | syncs per message | bytes to storage per message | writes per hour at 20 Hz |",
         "|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         syncs = r.get("syncs")
+        if "steady" in r:
+            written, lasted = r["steady"]
+            per_hour = "n/a" if written < 0 else f"{written / lasted * 3600:,.0f}"
+            steady_lines.append(f"| {r['ros']} | {r['label']} | {lasted:.0f} s | {written:,} | {per_hour} |")
         per = "n/a (no strace)" if syncs is None else f"{syncs / max(1, r.get('sync_messages', 1)):.2f}"
         written = r["written"] / max(1, r["messages"])
         hour = (
@@ -419,7 +457,7 @@ def table(rows: list[dict[str, Any]]) -> str:
             f"| {r['ros']} | {r['label']} | {us(r['inside']):,.0f} ({us(r['inside'], 99):,.0f}) "
             f"| {us(r['trips']):,.0f} ({us(r['trips'], 99):,.0f}) | {per} | {written:,.0f} | {hour} |"
         )
-    return "\n".join(lines)
+    return "\n".join(lines + (steady_lines if len(steady_lines) > 5 else []))
 
 
 def ratios(rows: list[dict[str, Any]]) -> str:
@@ -446,6 +484,9 @@ def main() -> None:
     parser.add_argument(
         "--rate", type=float, default=10.0, help="the node's rate (0.01: its timer sends nothing during a run)"
     )
+    parser.add_argument(
+        "--steady", type=float, default=60.0, help="seconds of steady operation to measure storage writes in (0: none)"
+    )
     args = parser.parse_args()
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(1))  # so that the middleware's processes are ended
     RATE[0] = args.rate
@@ -458,7 +499,7 @@ def main() -> None:
             if ros == 1 and not Path(ROS1_PYTHON).exists():
                 print("ROS 1: no", ROS1_PYTHON)
                 continue
-            rows += measure(ros, args.samples, args.gap, args.rounds, args.baseline, Path(folder))
+            rows += measure(ros, args.samples, args.gap, args.rounds, args.baseline, Path(folder), args.steady)
     print(table(rows))
     print()
     print(ratios(rows))
