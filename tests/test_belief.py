@@ -120,6 +120,7 @@ def test_an_answer_tells_only_what_it_tells_from_wherever_the_component_may_be()
 @pytest.mark.parametrize("report", ["nowhere", '{"state": "stopped", "speed": 3}', "{bad json", "", "[1]"])
 def test_a_report_that_cannot_be_where_the_component_is_is_refused(report: str) -> None:
     node = Node("examples/line_follower.rscd")
+    node.housekeeping()  # its driver is asked
     node.report("EmergencyStop", True, report)
     assert "EmergencyStop" in node.supervisor.unsure()
     assert any("report of EmergencyStop refused" in text for _, text in node.logs), node.logs

@@ -255,7 +255,7 @@ class NodeCore(object):
         self.asked_after: Dict[str, int] = {}
         # component -> when (this wall clock) its driver was first asked since its last report came:
         # an answer stamped later may not be in the report, and is taken as new
-        self.asked_since: Dict[str, float] = {}
+        self.asked_since: Dict[str, float] = self.supervisor.asking  # it counts changes while any
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
         if self.supervisor.unconfirmed:
             log(
@@ -337,15 +337,17 @@ class NodeCore(object):
 
     def report(self, component: str, success: bool, message: str) -> None:
         """A driver's answer to a report request (``success`` False: it could not tell)."""
+        since = self.asked_since.pop(component, None)  # the round of requests ends
+        after = self.asked_after.pop(component, None)
         if component not in self.supervisor.unsure():
             return
         if not success:
             self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
             return
-        since = self.asked_since.pop(component, None)
-        if self.supervisor.changes.get(component, 0) != self.asked_after.get(component, 0):
-            # asked for before a command to it went out or an answer moved it: its driver may have
-            # answered before that; asked again (once no command is on its way: ask_reports)
+        if since is None or self.supervisor.changes.get(component, 0) != after:
+            # asked for before a command to it went out or an answer moved it (or an answer to an
+            # earlier round): its driver may have answered before that; asked again (once no
+            # command is on its way: ask_reports)
             self.asked.pop(component, None)
             self.log("info", "report of %s not taken: it changed since it was asked (a command or an answer)" % (component,))
             return

@@ -392,6 +392,9 @@ class Supervisor(object):
         # while watching, per component: how many events (commands, triggers, answers, data) changed
         # its fields; a driver's report asked for before one of them may tell where it was before
         self.changes: Dict[str, int] = {}
+        # the components whose driver is being asked for a report (the node's, by when): changes
+        # are counted only while any is (nothing to count them for otherwise)
+        self.asking: Dict[str, float] = {}
         self.reset(confirmed)
 
     def reset(self, confirmed: bool = True) -> None:
@@ -668,11 +671,12 @@ class Supervisor(object):
         if name is not None:
             now = time.time()
             changes = self.changes
+            counting = bool(self.asking)
             for index, attribute in self.TRACKED:
                 new, old = getattr(self, attribute), before[index]
                 if new is not old:
                     self.commanded[attribute] = now
-                    if _moved(new, old):
+                    if counting and _moved(new, old):
                         component = self.COMPONENT_OF[attribute]
                         changes[component] = changes.get(component, 0) + 1
         return name
@@ -887,12 +891,13 @@ class Supervisor(object):
         self._dirty = True
         if self.watching:
             index = self.INDEX
-            changes = self.changes
-            for place, attribute in self.TRACKED:
-                new, old = getattr(self, attribute), saved[place]
-                if new is not old and _moved(new, old):
-                    component = self.COMPONENT_OF[attribute]
-                    changes[component] = changes.get(component, 0) + 1
+            if self.asking:
+                changes = self.changes
+                for place, attribute in self.TRACKED:
+                    new, old = getattr(self, attribute), saved[place]
+                    if new is not old and _moved(new, old):
+                        component = self.COMPONENT_OF[attribute]
+                        changes[component] = changes.get(component, 0) + 1
             if self.commanded:
                 for attribute in list(self.commanded):  # an answer came: no longer waiting for one
                     if getattr(self, attribute) is not saved[index[attribute]]:
