@@ -49,7 +49,7 @@ checked = time.perf_counter()
 if method == "check":
     from robosc.plant import build_network
     from robosc.synthesis.symbolic import synthesize_monolithic
-    from robosc.synthesis.symmetry import synthesize_counted
+    from robosc.synthesis.counted import synthesize_counted
     network = build_network(model)
     mono, fleet = synthesize_monolithic(network), synthesize_counted(network, least=2)
     assert fleet.method == "symmetric", fleet.details.get("symmetry")
@@ -77,7 +77,9 @@ def checkout(revision: str, work: Path) -> Path:
     """The ``src`` folder of ``revision`` of this repository (git archive), to run it side by side."""
     target = work / revision
     target.mkdir(parents=True)
-    archive = subprocess.run(["git", "-C", str(HERE.parent), "archive", revision, "src"], capture_output=True, check=True)
+    archive = subprocess.run(
+        ["git", "-C", str(HERE.parent), "archive", revision, "src"], capture_output=True, check=True
+    )
     subprocess.run(["tar", "-x", "-C", str(target)], input=archive.stdout, check=True)
     return target / "src"
 
@@ -95,7 +97,12 @@ def measure(
         env = {**os.environ, "PYTHONPATH": str(source)} if source is not None else None
         done = subprocess.run(
             [sys.executable, "-c", RUN, str(HERE), family, str(n), method],
-            capture_output=True, text=True, timeout=timeout, preexec_fn=cap, check=False, env=env,
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            preexec_fn=cap,
+            check=False,
+            env=env,
         )
     except subprocess.TimeoutExpired:
         return {"failed": f"over {timeout:g} s"}
@@ -116,7 +123,8 @@ def main() -> None:
     parser.add_argument("--timeout", type=float, default=600.0)
     parser.add_argument("--memory-gb", type=float, default=2.0)
     parser.add_argument(
-        "--baseline", help="a git revision run side by side, its methods marked @REV (e.g. 14910d1, before this session)"
+        "--baseline",
+        help="a git revision run side by side, its methods marked @REV (e.g. 14910d1, before this session)",
     )
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as work:

@@ -14,7 +14,8 @@ from typing import Any
 from robosc.api import check_text
 from robosc.plant import build_network
 from robosc.synthesis.explicit import synthesize_explicit
-from robosc.synthesis.symbolic import synthesize_monolithic, synthesize_symbolic
+from robosc.synthesis.methods import synthesize_symbolic
+from robosc.synthesis.symbolic import synthesize_monolithic
 
 
 def key(network: Any, state: Any) -> str:

@@ -36,7 +36,7 @@ def _run(method: str, text: str, queue: multiprocessing.Queue) -> None:  # type:
     from robosc.api import check_text
     from robosc.plant import build_network
     from robosc.synthesis.explicit import synthesize_explicit
-    from robosc.synthesis.symbolic import synthesize_symbolic
+    from robosc.synthesis.methods import synthesize_symbolic
 
     sys.path.insert(0, str(ROOT / "tests"))
     from test_synthesis_faudes import faudes_supervisor

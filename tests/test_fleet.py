@@ -13,10 +13,11 @@ from robosc.api import check_text, format_text, synthesize_model
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant import build_network
+from robosc.synthesis.counted import synthesize_counted
 from robosc.synthesis.explicit import synthesize_explicit
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.symbolic import synthesize_monolithic
-from robosc.synthesis.symmetry import counted, synthesize_counted
+from robosc.synthesis.symmetry import counted
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
 import families
@@ -64,7 +65,9 @@ def test_for_blocks_and_quantifiers_expand_per_instance():
 
 
 def test_count_of_conditions_written_out():
-    text = FLEET.replace("requirement bot1.go needs Door.closed", "requirement open needs count(bot1.idle, Door.closed) >= 2")
+    text = FLEET.replace(
+        "requirement bot1.go needs Door.closed", "requirement open needs count(bot1.idle, Door.closed) >= 2"
+    )
     model = check_text(text).model
     condition = model.requirements[-1].condition
     assert isinstance(condition.left, m.Count) and len(condition.left.terms) == 2
@@ -412,8 +415,12 @@ def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
 def test_a_fleet_event_never_allowed_is_said_once_for_the_robots():
     from robosc.synthesis.warnings import synthesis_warnings
 
-    [warning] = [d for d in synthesis_warnings(synthesize_model(check_text(NEVER).model)) if d.code.value == "never-allowed"]
-    assert warning.message.startswith("synthesis never allows 'bot1.go' (the same for every robot of bot (bot1 .. bot3))")
+    [warning] = [
+        d for d in synthesis_warnings(synthesize_model(check_text(NEVER).model)) if d.code.value == "never-allowed"
+    ]
+    assert warning.message.startswith(
+        "synthesis never allows 'bot1.go' (the same for every robot of bot (bot1 .. bot3))"
+    )
     assert "[bot1.b, bot2.a, bot3.a]" in warning.message
 
 
@@ -480,6 +487,14 @@ def test_why_a_fleet_is_not_counted_names_the_requirement():
 
 
 def test_an_instance_of_another_group_cannot_be_singled_out():
-    text = SINGLED_OUT.format(n=3).replace("r != bot1", "r != Lift").replace("    for r in bot", "    component Lift { behaviour { initial marked state up { } } }\n    for r in bot")
+    text = (
+        SINGLED_OUT.format(n=3)
+        .replace("r != bot1", "r != Lift")
+        .replace(
+            "    for r in bot", "    component Lift { behaviour { initial marked state up { } } }\n    for r in bot"
+        )
+    )
     result = check_text(text)
-    assert result.model is None and any("stands for an instance" in d.message for d in result.diagnostics), result.render()
+    assert result.model is None and any("stands for an instance" in d.message for d in result.diagnostics), (
+        result.render()
+    )

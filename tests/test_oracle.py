@@ -19,9 +19,10 @@ from random_models import robots
 from robosc.api import check_text
 from robosc.plant import build_network
 from robosc.synthesis.compare import compare
+from robosc.synthesis.counted import synthesize_counted
 from robosc.synthesis.explicit import TooManyStates, synthesize_explicit
-from robosc.synthesis.symbolic import synthesize_monolithic, synthesize_symbolic
-from robosc.synthesis.symmetry import synthesize_counted
+from robosc.synthesis.methods import synthesize_symbolic
+from robosc.synthesis.symbolic import synthesize_monolithic
 
 EXAMPLES = int(os.environ.get("ROBOSC_ORACLE_EXAMPLES", "1200"))
 MAX_STATES = 1_000  # the explicit reference enumerates them all; larger fleets are left out (and counted)
@@ -64,12 +65,18 @@ def oracle(text: str) -> collections.Counter[str]:
         results.append(("counting pairs", pairs))
     for name, result in results:
         comparison = compare(explicit, result)
-        assert comparison.agree, f"{name} ({result.details.get('symmetry', result.method)}): {comparison.differences}\n{text}"
+        assert comparison.agree, (
+            f"{name} ({result.details.get('symmetry', result.method)}): {comparison.differences}\n{text}"
+        )
     expected = libfaudes_supervisor(explicit)
     found = robosc_figures(explicit.details["supervisor"]) if explicit.ok else (0, 0)
     assert found == expected, f"robosc {found}, libFAUDES {expected}\n{text}"
     return collections.Counter(
-        {"counted (default)": default.method == "symmetric", "counted (pairs)": pairs.method == "symmetric", "no supervisor": not explicit.ok}
+        {
+            "counted (default)": default.method == "symmetric",
+            "counted (pairs)": pairs.method == "symmetric",
+            "no supervisor": not explicit.ok,
+        }
     )
 
 
@@ -89,7 +96,12 @@ def test_random_robots_with_events_of_several_outcomes_match_libfaudes(text: str
     oracle(text)
 
 
-@settings(max_examples=int(os.environ.get("ROBOSC_ORACLE_MODULES", "200")), deadline=None, database=None, suppress_health_check=list(HealthCheck))
+@settings(
+    max_examples=int(os.environ.get("ROBOSC_ORACLE_MODULES", "200")),
+    deadline=None,
+    database=None,
+    suppress_health_check=list(HealthCheck),
+)
 @given(fleets())
 def test_random_fleets_generated_module_decides_as_the_monolithic_supervisor(model: tuple[str, frozenset[str]]) -> None:
     """A sample of the oracle's fleets: the module ``robosc generate`` writes from the default

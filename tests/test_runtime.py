@@ -29,7 +29,7 @@ from robosc.runtime.pyexpr import GENERATED
 from robosc.runtime.simulator import load_module
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.explicit import synthesize_explicit
-from robosc.synthesis.symbolic import synthesize_symbolic
+from robosc.synthesis.methods import synthesize_symbolic
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ["maze_solver", "line_follower", "pick_and_light"]
@@ -282,7 +282,14 @@ def test_enum_conversion_refuses_data_it_cannot_read() -> None:
     assert sup.convert(convert, wall) == "wall_right"
     assert sup.convert(convert, Data({"ranges": [math.inf] * 360})) == "no_wall_right"  # REP 117: no return
     assert warnings == []
-    for bad in (None, Data({}), Data({"ranges": [0.1]}), Data({"ranges": "text"}), 42, Data({"ranges": [math.nan] * 360})):
+    for bad in (
+        None,
+        Data({}),
+        Data({"ranges": [0.1]}),
+        Data({"ranges": "text"}),
+        42,
+        Data({"ranges": [math.nan] * 360}),
+    ):
         with pytest.raises(Unreadable, match="WallRight"):
             sup.convert(convert, bad)
     # delivered, unreadable data changes nothing and is counted

@@ -15,8 +15,9 @@ from module_check import module_agrees
 from robosc.api import cross_check, load_model, plan_supervisor, synthesize_model
 from robosc.plant import build_network
 from robosc.runtime.simulator import Lookahead, Simulator, Violation
+from robosc.synthesis.methods import synthesize_symbolic
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.symbolic import synthesize_monolithic, synthesize_symbolic
+from robosc.synthesis.symbolic import synthesize_monolithic
 from robosc.synthesis.warnings import synthesis_warnings
 
 MODELS = Path(__file__).parent / "models" / "soundness"
@@ -73,7 +74,10 @@ def test_an_event_with_two_outcomes_one_blocking_leaves_no_nonblocking_superviso
 def test_synthesize_explicit_says_they_agree_on_each_reproduction(name: str):
     done = subprocess.run(
         [sys.executable, "-m", "robosc", "synthesize", "--explicit", "--json", str(MODELS / name)],
-        capture_output=True, text=True, timeout=120, check=False,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
     )
     data = json.loads(done.stdout)
     assert data["cross_check"]["agree"] is True and data["cross_check"]["differences"] == []
@@ -91,6 +95,7 @@ def test_the_simulators_lookahead_finds_the_deadlock_a_supervisor_without_the_ad
     """The look-ahead judges the supervisor that runs (the guards), not synthesis' fixed point:
     with the conditions synthesis added dropped, two robots busy behind the closed door block."""
     result = synthesize_model(load_model(MODELS / "mixed_quantifier.rscd"))
+
     class Trusting:  # a synthesis that is wrong the way issue 28's were: it sees nothing amiss
         def allows(self, event, state):
             return True
@@ -99,7 +104,10 @@ def test_the_simulators_lookahead_finds_the_deadlock_a_supervisor_without_the_ad
             return True
 
     without = SynthesisResult(
-        result.network, result.method, True, tuple(EventGuard(g.event, g.required, None) for g in result.guards),
+        result.network,
+        result.method,
+        True,
+        tuple(EventGuard(g.event, g.required, None) for g in result.guards),
         details={"supervisor": Trusting()},
     )
     two_busy = result.state({"bot1": "busy", "bot2": "busy"})

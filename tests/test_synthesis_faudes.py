@@ -59,7 +59,9 @@ def _deterministic(network: Network) -> bool:
     return True
 
 
-def _product_spec(network: Network, requirement, owners: list[Automaton], alphabet: faudes.EventSet) -> faudes.Generator:
+def _product_spec(
+    network: Network, requirement, owners: list[Automaton], alphabet: faudes.EventSet
+) -> faudes.Generator:
     """The product of ``owners`` (deterministic), ``requirement.event`` only where its condition holds."""
     g = faudes.Generator()
     events = {e for a in owners for e in a.alphabet} | {requirement.event}
@@ -188,15 +190,23 @@ def test_random_models_match_libfaudes(text: str) -> None:
 
 
 @pytest.mark.parametrize(
-    ("family", "n"), [("ring_instances", 2), ("ring_instances", 3), ("ring_instances", 4), ("warehouse_instances", 2), ("warehouse_instances", 3), ("ring", 3)]
+    ("family", "n"),
+    [
+        ("ring_instances", 2),
+        ("ring_instances", 3),
+        ("ring_instances", 4),
+        ("warehouse_instances", 2),
+        ("warehouse_instances", 3),
+        ("ring", 3),
+    ],
 )
 def test_fleets_match_libfaudes(family: str, n: int) -> None:
     """Fleets written with instances (and one copied), requirements over every robot: the
     explicit and the monolithic supervisors are libFAUDES's; the counted one allows the same
     events in every state libFAUDES's reaches."""
     import families
+    from robosc.synthesis.counted import synthesize_counted
     from robosc.synthesis.symbolic import synthesize_monolithic
-    from robosc.synthesis.symmetry import synthesize_counted
 
     network = build_network(check_text(families.FLEETS[family](n)).model)
     expected = faudes_supervisor(network)

@@ -30,6 +30,7 @@ if TYPE_CHECKING:
     from robosc.sim.world import World
     from robosc.synthesis.compare import Comparison
     from robosc.synthesis.options import SynthesisOptions
+    from robosc.synthesis.progress import Progress
     from robosc.synthesis.result import SynthesisResult
 
 __all__ = [
@@ -142,7 +143,12 @@ def format_text(text: str, path: str = "<text>") -> str | CheckResult:
     return format_syntax(parsed.syntax)
 
 
-def synthesize_model(model: Model, method: str = "symbolic", options: SynthesisOptions | None = None) -> SynthesisResult:
+def synthesize_model(
+    model: Model,
+    method: str = "symbolic",
+    options: SynthesisOptions | None = None,
+    progress: Callable[[Progress], Any] | None = None,
+) -> SynthesisResult:
     """The supervisor of a checked robot model.
 
     ``result.ok`` tells whether one exists; ``result.guards`` gives, for each
@@ -150,22 +156,26 @@ def synthesize_model(model: Model, method: str = "symbolic", options: SynthesisO
     ``result.allows(event, state)`` answers for a concrete network state;
     ``result.explanation`` says why synthesis failed. ``options``
     (:class:`robosc.synthesis.options.SynthesisOptions`) tune the symbolic method's
-    speed and memory, never its result.
+    speed and memory, never its result. ``progress`` is called with a
+    :class:`robosc.synthesis.progress.Progress` every quarter of a second or so while the
+    symbolic method works (phase, round, steps, BDD nodes, seconds), for a display.
     """
     from robosc.plant import build_network
     from robosc.synthesis.explicit import synthesize_explicit
+    from robosc.synthesis.methods import synthesize_symbolic
     from robosc.synthesis.options import DEFAULT
-    from robosc.synthesis.symbolic import synthesize_symbolic
 
     network = build_network(model)
     if method == "explicit":
         return synthesize_explicit(network)
     if method != "symbolic":
         raise ValueError(f"unknown synthesis method '{method}' (symbolic or explicit)")
-    return synthesize_symbolic(network, options or DEFAULT)
+    return synthesize_symbolic(network, options or DEFAULT, progress)
 
 
-def cross_check(model: Model, options: SynthesisOptions | None = None) -> tuple[SynthesisResult, SynthesisResult, Comparison]:
+def cross_check(
+    model: Model, options: SynthesisOptions | None = None
+) -> tuple[SynthesisResult, SynthesisResult, Comparison]:
     """Explicit-state synthesis of a checked model, the symbolic method (``options``: monolithic
     or counted) on the same network, and how they compare state by state and event by event
     (:class:`robosc.synthesis.compare.Comparison`; a counted result's states are orbits, and the
@@ -173,8 +183,8 @@ def cross_check(model: Model, options: SynthesisOptions | None = None) -> tuple[
     from robosc.plant import build_network
     from robosc.synthesis.compare import compare
     from robosc.synthesis.explicit import synthesize_explicit
+    from robosc.synthesis.methods import synthesize_symbolic
     from robosc.synthesis.options import DEFAULT
-    from robosc.synthesis.symbolic import synthesize_symbolic
 
     network = build_network(model)
     explicit = synthesize_explicit(network)
@@ -257,4 +267,6 @@ def run_world(
             on_note(note)
     if ros is None:
         return run_local(loaded, module, robots, timeout, rate, seed, folder)
-    return run_ros(loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, page=page, on_start=on_start)
+    return run_ros(
+        loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, page=page, on_start=on_start
+    )

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import contextlib
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -11,6 +15,7 @@ from robosc.language.model import Model
 
 if TYPE_CHECKING:
     from robosc.runtime.plan import Plan
+    from robosc.synthesis.progress import Progress
     from robosc.synthesis.result import SynthesisResult
 
 EXIT_OK = 0
@@ -85,6 +90,43 @@ def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
     return model
 
 
+def progress_line(progress: Progress) -> str:
+    """One line saying how far synthesis is."""
+    phase = progress.phase + (f", round {progress.round}" if progress.round else "")
+    return (
+        f"synthesizing (Ctrl-C stops): {phase} · {progress.steps:,} steps · {progress.live_nodes:,} BDD nodes "
+        f"· {progress.seconds:.1f} s"
+    )
+
+
+@contextlib.contextmanager
+def synthesis_running(show: bool = True) -> Iterator[Callable[[Progress], None] | None]:
+    """While synthesis runs: Ctrl-C (and SIGTERM, SIGHUP) ends the process at once (the BDD
+    library holds Python's own handlers off until an operation ends, which can take many
+    seconds on a large fleet; synthesis writes nothing and starts no process), and, where standard error is a terminal and ``show``, a callback that
+    keeps one line there saying how far it is (cleared at the end; pipes and ``--json`` output
+    stay clean)."""
+    main = threading.current_thread() is threading.main_thread()
+    ending = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+    before = [signal.signal(number, signal.SIG_DFL) for number in ending] if main else []
+    shown = [False]
+
+    def report(progress: Progress) -> None:
+        text = progress_line(progress)[: max(20, (width(err=True) or 80) - 1)]
+        sys.stderr.write("\r\x1b[K" + text)
+        sys.stderr.flush()
+        shown[0] = True
+
+    try:
+        yield report if show and sys.stderr.isatty() else None
+    finally:
+        if shown[0]:
+            sys.stderr.write("\r\x1b[K")
+            sys.stderr.flush()
+        for number, handler in zip(ending, before, strict=False):  # none where it is not main
+            signal.signal(number, handler)
+
+
 def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[SynthesisResult, Plan]:
     """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
     printed) when no supervisor exists."""
@@ -92,7 +134,8 @@ def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[Synth
     from robosc.cli.synthesize import print_result
 
     model = load_robot(file, include, purpose)
-    result = synthesize_model(model)
+    with synthesis_running() as progress:
+        result = synthesize_model(model, progress=progress)
     if not result.ok:
         print_result(result)
         raise exit_with(EXIT_MODEL_ERRORS)

@@ -16,6 +16,7 @@ from robosc.cli.common import (
     input_problem,
     load_robot,
     say,
+    synthesis_running,
     width,
 )
 from robosc.cli.table import Cell, boxed
@@ -169,28 +170,40 @@ def _print_fleet_note(result: SynthesisResult, show: Any) -> None:
         show(f"note: {note}", "      ")
 
 
-def _print_cross_check(result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None, show: Any) -> None:
+def _print_cross_check(
+    result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None, show: Any
+) -> None:
     """Explicit-state synthesis computes the supervisor's states, not conditions per event: it
     is a cross-check of the symbolic method, and says so with the figures it compares."""
     plant = result.details.get("plant_states")
-    show(f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
-        "it computes states, not conditions per event):", "    ")
+    show(
+        f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
+        "it computes states, not conditions per event):",
+        "    ",
+    )
     controlled = f"{result.reachable_states} reachable states" if result.ok else "no supervisor"
-    show(f"  uncontrolled plant: {plant} states; controlled system: {controlled} ({result.seconds * 1000:.1f} ms)", "    ")
+    show(
+        f"  uncontrolled plant: {plant} states; controlled system: {controlled} ({result.seconds * 1000:.1f} ms)",
+        "    ",
+    )
     if cross_check is None:
         return
     symbolic, comparison = cross_check
     if not symbolic.ok:
         found = "no supervisor"
     elif "counted" in symbolic.details:
-        found = (f"{symbolic.reachable_states} reachable states counted (robots in the same states, in any order, "
-            f"count once; explicit: {comparison.reference_states} counted so)")
+        found = (
+            f"{symbolic.reachable_states} reachable states counted (robots in the same states, in any order, "
+            f"count once; explicit: {comparison.reference_states} counted so)"
+        )
     else:
         found = f"{symbolic.reachable_states} reachable states"
     if symbolic.ok:
         found += f", a condition added to {len(symbolic.added_guards)} of {len(symbolic.guards)} controllable events"
-    verdict = "they agree in every controlled state and event" if comparison.agree else click.style(
-        "they DISAGREE: please report this model", fg="red", bold=True
+    verdict = (
+        "they agree in every controlled state and event"
+        if comparison.agree
+        else click.style("they DISAGREE: please report this model", fg="red", bold=True)
     )
     show(f"  {symbolic.method} synthesis: {found}; {verdict}", "    ")
     for difference in comparison.differences:
@@ -283,7 +296,8 @@ def synthesize(
                 "for small models (leave out --explicit, or try it on a smaller fleet)"
             ) from None
     else:
-        result = synthesize_model(model, "symbolic", options)
+        with synthesis_running(not as_json_output) as progress:
+            result = synthesize_model(model, "symbolic", options, progress)
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()

@@ -19,7 +19,7 @@ _EXPORTS = {
     "NetworkState": "robosc.synthesis.state",
     "describe": "robosc.synthesis.state",
     "synthesize_explicit": "robosc.synthesis.explicit",
-    "synthesize": "robosc.synthesis.symbolic",
+    "synthesize": "robosc.synthesis.methods",
 }
 
 __all__ = sorted(_EXPORTS)

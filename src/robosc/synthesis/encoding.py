@@ -22,6 +22,7 @@ from robosc.record import record
 from robosc.synthesis.evaluate import ARITHMETIC, COMPARE
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.ordering import initial_order
+from robosc.synthesis.progress import Watch
 
 BDD = Any  # dd.cudd.Function
 CACHE_SLOTS = 2**16
@@ -79,6 +80,8 @@ class Relation:
 
 
 class Encoding:
+    watch: Watch | None = None  # told of each image and preimage, for a progress display
+
     def __init__(self, network: Network, options: SynthesisOptions = DEFAULT) -> None:
         self.network = network
         # CUDD grows its computed table as it pays off: starting at 2^16 slots instead of
@@ -204,6 +207,8 @@ class Encoding:
     def pre(self, relation: Relation, target: BDD) -> BDD:
         """States with a transition in ``relation`` into ``target``."""
         self.preimages += 1
+        if self.watch is not None:
+            self.watch.step()
         if not relation.primed:
             found = relation.bdd & target
         else:
@@ -213,6 +218,8 @@ class Encoding:
     def post(self, relation: Relation, source: BDD) -> BDD:
         """States reached by a transition in ``relation`` from ``source``."""
         self.images += 1
+        if self.watch is not None:
+            self.watch.step()
         if relation.guard is not None:
             source = source & relation.guard
         if not relation.bits:

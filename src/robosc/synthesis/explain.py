@@ -13,6 +13,7 @@ from robosc.language.render import render
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network, Requirement
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
+from robosc.synthesis.fixedpoints import closure
 from robosc.synthesis.result import Explanation, Fix, Step
 from robosc.synthesis.state import NetworkState
 
@@ -121,7 +122,9 @@ def likeliest(found: list[Fix]) -> tuple[Fix, ...]:
     """The fixes once each, a missing transition first: where one is missing, a requirement
     that shuts a way out is its consequence, not the cause, and is left out."""
     unique = list(dict.fromkeys(found))
-    kinds = ("missing", "unmarked") if any(f.kind == "missing" for f in unique) else ("missing", "unmarked", "requirement")
+    kinds = (
+        ("missing", "unmarked") if any(f.kind == "missing" for f in unique) else ("missing", "unmarked", "requirement")
+    )
     return tuple(f for kind in kinds for f in unique if f.kind == kind)
 
 
@@ -185,7 +188,11 @@ def _stuck(fp: Any, state: NetworkState) -> list[tuple[Automaton, m.State, list[
             if broken:
                 exits.append(_Exit(event, "forbidden", broken[0]))
             elif possible and network.branching(event):
-                outcomes = tuple(f"{automaton.name}.{e.target.name}" for e in automaton.edges if e.source is location and e.event is event)
+                outcomes = tuple(
+                    f"{automaton.name}.{e.target.name}"
+                    for e in automaton.edges
+                    if e.source is location and e.event is event
+                )
                 exits.append(_Exit(event, "branches", outcomes=outcomes))
             else:
                 exits.append(_Exit(event, "blocks on" if possible else "disabled"))
@@ -282,8 +289,6 @@ def _required_moves(fp: Any) -> tuple[list[tuple[Event, Relation]], BDD]:
     """Each event's transitions where the requirements allow it, and the states from which
     no marked state can be reached over them at all (supervisor or not). Kept per result."""
     if "required moves" not in fp.memo:
-        from robosc.synthesis.symbolic import closure
-
         enc = fp.enc
         restricted = [(e, fp.relation[e].restrict(fp.required[e])) for e in enc.network.events]
         dead = enc.valid() & ~closure(enc, fp.marked, (r for _, r in restricted))

@@ -23,7 +23,7 @@ from __future__ import annotations
 import itertools
 import re
 from collections.abc import Iterator, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from robosc.language import model as m
 from robosc.language.render import render
@@ -32,9 +32,6 @@ from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negat
 from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, Network, Requirement, Update
 from robosc.record import field, record
 from robosc.synthesis.evaluate import Undefined, evaluate
-
-if TYPE_CHECKING:
-    from robosc.synthesis.result import SynthesisResult
 
 LocalState = tuple[tuple[m.State, ...], tuple[object, ...]]  # locations of the agent's automata, its values
 
@@ -229,7 +226,10 @@ def _updated(
         elif update.value is None:
             choices.append(network.domains[variable])
         else:
-            if any(isinstance(n, (m.StateRef, m.VariableRef)) and _owner(n) not in _names(agent) for n in m.walk(update.value)):
+            if any(
+                isinstance(n, (m.StateRef, m.VariableRef)) and _owner(n) not in _names(agent)
+                for n in m.walk(update.value)
+            ):
                 raise NotSymmetric(f"an update of {variable.name} reads another agent")
             try:
                 value = evaluate(update.value, at, values)
@@ -300,7 +300,7 @@ def _flatten(e: m.Expr, op: str) -> list[m.Expr]:
     return [e]
 
 
-def _ge(counter: m.Variable, bound: int) -> m.Expr:
+def at_least(counter: m.Variable, bound: int) -> m.Expr:
     ref = m.VariableRef(counter, (), counter.type, NO_SPAN)
     return m.Binary(">=", ref, m.Literal(bound, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
 
@@ -364,16 +364,26 @@ class Translator:
         if agent is group.rep:
             return e
 
-        return _rename_back(e, mapping)
+        return rename_back(e, mapping)
 
     def at(self, group: Group, index: int) -> m.Expr:
         """The representative is in local state ``index``."""
         locations, values = group.local[index]
         parts: list[m.Expr] = [
-            m.StateRef(loc, NO_SPAN) for a, loc in zip(group.rep.automata, locations, strict=True) if len(a.locations) > 1
+            m.StateRef(loc, NO_SPAN)
+            for a, loc in zip(group.rep.automata, locations, strict=True)
+            if len(a.locations) > 1
         ]
         for variable, value in zip(group.rep.variables, values, strict=True):
-            parts.append(m.Binary("=", m.VariableRef(variable, (), variable.type, NO_SPAN), _value(variable, value), m.BOOLEAN, NO_SPAN))
+            parts.append(
+                m.Binary(
+                    "=",
+                    m.VariableRef(variable, (), variable.type, NO_SPAN),
+                    _value(variable, value),
+                    m.BOOLEAN,
+                    NO_SPAN,
+                )
+            )
         return all_of(parts)
 
     def residuals(self, group: Group, e: m.Expr, agent: Agent, me: Agent | None) -> tuple[m.Expr, ...]:
@@ -510,9 +520,11 @@ class Translator:
                 if op == "or":  # another agent of the group is in a local state where its part holds
                     if boolean_constant(holds) is False:
                         continue
-                    some = _ge(counter, 1)
+                    some = at_least(counter, 1)
                     if mine_in:
-                        some = any_of([_ge(counter, 2), all_of([negate(self.at(group, index)), _ge(counter, 1)])])
+                        some = any_of(
+                            [at_least(counter, 2), all_of([negate(self.at(group, index)), at_least(counter, 1)])]
+                        )
                     parts.append(some if boolean_constant(holds) is True else all_of([some, holds]))
                 else:  # every other agent of the group is in a local state where its part holds
                     if boolean_constant(holds) is True:
@@ -526,7 +538,9 @@ class Translator:
 
     def _count(self, e: m.Count, me: Agent | None) -> m.Expr:
         kept, buckets = self._buckets(e.terms, me)
-        total: list[m.Expr] = [m.Count("", tuple(kept), m.BasicType(m.BasicKind.INTEGER, 0, len(kept)), e.span)] if kept else []
+        total: list[m.Expr] = (
+            [m.Count("", tuple(kept), m.BasicType(m.BasicKind.INTEGER, 0, len(kept)), e.span)] if kept else []
+        )
         for group, residuals, mine_in in self._over_group(buckets, me, None):
             mine: list[m.Expr] = []  # the terms an other agent has, were it ``me``
             for index, counter in enumerate(group.counters):
@@ -534,8 +548,12 @@ class Translator:
                 if not holding:
                     continue
                 ref: m.Expr = m.VariableRef(counter, (), counter.type, NO_SPAN)
-                if any(boolean_constant(h) is not True for h in holding):  # how many hold depends on shared state or on me
-                    weight: m.Expr = m.Count("", tuple(holding), m.BasicType(m.BasicKind.INTEGER, 0, len(holding)), e.span)
+                if any(
+                    boolean_constant(h) is not True for h in holding
+                ):  # how many hold depends on shared state or on me
+                    weight: m.Expr = m.Count(
+                        "", tuple(holding), m.BasicType(m.BasicKind.INTEGER, 0, len(holding)), e.span
+                    )
                     total.append(m.Binary("*", ref, weight, m.INTEGER, e.span))
                 elif len(holding) == 1:
                     total.append(ref)
@@ -634,7 +652,7 @@ def counted(network: Network, least: int = 2) -> Counted:
     found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
         raise NotSymmetric(f"no {least} components are copies of each other")
-    copies = "; ".join(_robots(group) for group in found)
+    copies = "; ".join(robots_of(group) for group in found)
     while True:  # each round splits a group into smaller ones, or ends
         try:
             return _counted(network, found)
@@ -660,7 +678,7 @@ def _split(found: list[Group], differ: Differ, least: int) -> list[Group]:
     return kept
 
 
-def _robots(group: Group) -> str:
+def robots_of(group: Group) -> str:
     names = [a.component.name for a in group.agents]
     return f"{names[0]} .. {names[-1]}" if len(names) > 2 else " and ".join(names)
 
@@ -682,9 +700,13 @@ def _counted(network: Network, found: list[Group]) -> Counted:
                 e.source,
                 e.target,
                 e.event,
-                translator.about(e.guard, None, f"the guard of {automaton.name}'s {e.event.name}") if e.guard is not None else None,
+                translator.about(e.guard, None, f"the guard of {automaton.name}'s {e.event.name}")
+                if e.guard is not None
+                else None,
                 tuple(
-                    Update(u.variable, translator.about(u.value, None, f"{automaton.name}'s update of {u.variable.name}"))
+                    Update(
+                        u.variable, translator.about(u.value, None, f"{automaton.name}'s update of {u.variable.name}")
+                    )
                     if u.value is not None
                     else u
                     for u in e.updates
@@ -730,9 +752,11 @@ def _counted(network: Network, found: list[Group]) -> Counted:
                 original.provide,
             )
             for move in outcomes:
-                guard = _ge(counter, 1)
+                guard = at_least(counter, 1)
                 if move.guard is not None:
-                    template = translator.about(move.guard, group.rep, f"the guard of {group.rep.component.name}'s {original.name}")
+                    template = translator.about(
+                        move.guard, group.rep, f"the guard of {group.rep.component.name}'s {original.name}"
+                    )
                     guard = all_of([guard, translator.instantiate(template, group, source)])
                 updates: tuple[Update, ...] = ()
                 if move.source != move.target:
@@ -748,11 +772,16 @@ def _counted(network: Network, found: list[Group]) -> Counted:
                 condition = translator.instantiate(templates[id(requirement)], group, source)
                 requirements.append(Requirement(event, condition, requirement.description, requirement.origin))
         automata.append(
-            Automaton(f"#{group.name}", AutomatonKind.DATA, (location,), location, tuple(edges), frozenset(e.event for e in edges))
+            Automaton(
+                f"#{group.name}",
+                AutomatonKind.DATA,
+                (location,),
+                location,
+                tuple(edges),
+                frozenset(e.event for e in edges),
+            )
         )
-        unmarked = [
-            i for i, (locations, _) in enumerate(group.local) if not all(loc.marked for loc in locations)
-        ]
+        unmarked = [i for i, (locations, _) in enumerate(group.local) if not all(loc.marked for loc in locations)]
         markers += [_le(group.counters[i], 0) for i in unmarked]
         starts = [start_of(network, group, agent) for agent in group.agents]
         for state, counter in zip(group.local, group.counters, strict=True):
@@ -859,9 +888,7 @@ class CountedSupervisor:
         fleet, enc = self.fleet, self.fp.enc
         where, values, places = self._places(state)
         by_name = self.by_name
-        locations = {
-            a: where[by_name[a.name]] if a.name in by_name else a.initial for a in fleet.network.automata
-        }
+        locations = {a: where[by_name[a.name]] if a.name in by_name else a.initial for a in fleet.network.automata}
         counted_values = {v: values[v] for v in fleet.network.variables if v in values}
         for group in fleet.groups:
             counts = [0] * len(group.local)
@@ -880,7 +907,9 @@ class CountedSupervisor:
         return shared, counted, counts
 
     @staticmethod
-    def local(group: Group, agent: Agent, where: dict[Automaton, m.State], values: dict[m.Variable, object]) -> LocalState:
+    def local(
+        group: Group, agent: Agent, where: dict[Automaton, m.State], values: dict[m.Variable, object]
+    ) -> LocalState:
         mapping = group.to_rep[id(agent)]
         return tuple(mapping[where[a]] for a in agent.automata), tuple(values[v] for v in agent.variables)
 
@@ -917,7 +946,7 @@ class CountedSupervisor:
         return bool((self._state(state)[0] & self.fp.bad) == self.fp.enc.false)
 
 
-def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
+def lift(e: m.Expr, fleet: Counted) -> m.Expr:
     """An expression over the counted network with each counter written as a ``count(...)``
     of the original model: how many of the group's agents are in that local state."""
     counters = {c: (group, i) for group in fleet.groups for i, c in enumerate(group.counters)}
@@ -925,7 +954,7 @@ def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
 
     def agent_at(group: Group, agent: Agent, index: int) -> m.Expr:
         back = {v: k for k, v in group.to_rep[id(agent)].items()}
-        return _rename_back(translator.at(group, index), back)
+        return rename_back(translator.at(group, index), back)
 
     def counted(node: m.Expr) -> m.Expr | None:
         if isinstance(node, m.VariableRef) and node.variable in counters:
@@ -937,7 +966,7 @@ def _lift(e: m.Expr, fleet: Counted) -> m.Expr:
     return replace(e, counted)
 
 
-def _rename_back(e: m.Expr, names: dict[Any, Any]) -> m.Expr:
+def rename_back(e: m.Expr, names: dict[Any, Any]) -> m.Expr:
     """``e`` with the states and variables ``names`` maps renamed (one agent's to another's)."""
 
     def renamed(node: m.Expr) -> m.Expr | None:
@@ -951,138 +980,3 @@ def _rename_back(e: m.Expr, names: dict[Any, Any]) -> m.Expr:
 
 
 MIN_AGENTS = 3  # a pair of copies (two bumpers, say) is synthesized monolithically: counting buys nothing
-
-
-def synthesize_counted(network: Network, options: Any = None, least: int = MIN_AGENTS) -> SynthesisResult:
-    """Synthesis by the counter abstraction where the network has a group of at least ``least``
-    symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not."""
-    import time
-
-    from robosc.synthesis.explain import explain
-    from robosc.synthesis.options import DEFAULT
-    from robosc.synthesis.readable import readable
-    from robosc.synthesis.result import EventGuard, SynthesisResult
-    from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
-
-    options = options or DEFAULT
-    start = time.perf_counter()
-    try:
-        fleet = counted(network, least)
-    except NotSymmetric as reason:
-        result = synthesize_monolithic(network, options)
-        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {reason}")
-        if reason.robots:  # a fleet: say why it was not counted
-            fallback["fleet_note"] = (
-                f"{reason.robots} are copies of each other, but synthesis did not count them: {reason}; "
-                "the supervisor is the monolithic method's (exact; slower on large fleets)"
-            )
-        return SynthesisResult(
-            result.network,
-            result.method,
-            result.ok,
-            result.guards,
-            result.reachable_states,
-            time.perf_counter() - start,
-            result.explanation,
-            fallback,
-        )
-    fp = fixpoint(fleet.network, options)
-    enc = fp.enc
-    described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
-    supervisor = CountedSupervisor(network, fleet, fp)
-    from robosc.synthesis.fleet_why import describer
-
-    fp.describer = describer(supervisor)
-    details: dict[str, Any] = {
-        "counted": fp,
-        "effort": enc.effort(),
-        "symmetry": f"counted ({described})",
-        "supervisor": supervisor,
-    }
-    if (fp.initial & fp.bad) != enc.false:
-        return SynthesisResult(
-            network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
-        )
-    translator = fleet.translator
-    guards = []
-    for event in network.controllable:
-        conditions = [r.condition for r in network.requirements_on(event)]
-        required: m.Expr | None = all_of(conditions) if conditions else None
-        owner = supervisor.agent_of_event.get(event)
-        pairs = [(ce, fleet.moves[ce][1][0].source if owner is not None else None) for ce in supervisor.counted_of(event)]
-        parts = []
-        for counted_event, source in pairs:
-            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
-            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
-            if (care & ~beyond) == enc.false:
-                continue
-            added = _lift(readable(enc, beyond, care), fleet)
-            if source is not None and owner is not None:
-                group, agent = owner
-                back = {v: k for k, v in group.to_rep[id(agent)].items()}
-                here = _rename_back(translator.at(group, source), back)
-                added = m.Binary("=>", here, added, m.BOOLEAN, NO_SPAN)
-            parts.append(added)
-        guards.append(EventGuard(event, required, all_of(parts) if parts else None))
-    return SynthesisResult(
-        network,
-        "symmetric",
-        True,
-        tuple(guards),
-        enc.count(fp.reachable),
-        time.perf_counter() - start,
-        details=details,
-    )
-
-
-# ---- warnings on a counted fleet ----------------------------------------------------------
-
-
-def counted_warnings(result: SynthesisResult) -> list[Any]:
-    """The warnings of :func:`robosc.synthesis.warnings.synthesis_warnings` from a counted
-    synthesis: a requirement that never holds in a reachable state, a state no robot of a group
-    reaches (named for the group's robots), and a controllable event it never allows (from
-    the explanations of :mod:`robosc.synthesis.fleet_why`)."""
-    from robosc.language.codes import Code
-    from robosc.language.diagnostics import warning
-    from robosc.synthesis.symbolic import reach
-    from robosc.synthesis.warnings import never_allowed, never_holding
-
-    fp: Any = result.details["counted"]
-    supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
-    fleet, enc = supervisor.fleet, fp.enc
-    reachable = fp.reachable
-
-    def holds_somewhere(requirement: Requirement) -> bool:
-        owner = supervisor.agent_of_event.get(requirement.event)
-        if owner is None:
-            return bool((reachable & enc.boolean(fleet.translator.template(requirement.condition, None))) != enc.false)
-        group, agent = owner
-        template = fleet.translator.template(requirement.condition, agent)
-        for index, counter in enumerate(group.counters):  # some robot at this local state: maybe this one
-            here = reachable & enc.boolean(_ge(counter, 1))
-            if here != enc.false and (here & enc.boolean(fleet.translator.instantiate(template, group, index))) != enc.false:
-                return True
-        return False
-
-    found = never_allowed(result) + never_holding(result.network, holds_somewhere)
-    plant = None
-    for group in fleet.groups:
-        rep = group.rep.automata[0]
-        robots = _robots(group)
-        for location in rep.locations:
-            holding = [i for i, (locations, _) in enumerate(group.local) if locations[0] is location]
-            somewhere = enc.false
-            for index in holding:
-                somewhere |= enc.boolean(_ge(group.counters[index], 1))
-            if (reachable & somewhere) != enc.false:
-                continue
-            plant = reach(enc, fp.initial, fp.relation.values()) if plant is None else plant
-            if (plant & somewhere) == enc.false:
-                message, hint = f"state '{location.name}' of {robots} can never be reached: no run of the model leads there", None
-            else:
-                message = f"no controlled run brings any of {robots} to state '{location.name}': the supervisor keeps them out"
-                hint = "fine for a state to avoid (an error); otherwise see why with --fleet monolithic on a small fleet"
-            found.append(warning(location.span, message, Code.UNREACHED_STATE, hint))
-    found.sort(key=lambda d: (d.span.path, d.span.line, d.span.column))
-    return found

@@ -13,8 +13,9 @@ from robosc.language.diagnostics import Diagnostic, warning
 from robosc.language.render import render
 from robosc.language.source import Span
 from robosc.plant.network import AutomatonKind, Event, Network, Requirement
+from robosc.synthesis.fixedpoints import reach
 from robosc.synthesis.result import Restriction, SynthesisResult
-from robosc.synthesis.symbolic import reach
+from robosc.synthesis.symmetry import CountedSupervisor, at_least, robots_of
 
 
 def event_span(event: Event) -> Span | None:
@@ -103,8 +104,6 @@ def never_allowed(result: SynthesisResult) -> list[Diagnostic]:
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     fixpoint: Any = result.details.get("fixpoint")
     if result.ok and fixpoint is None and result.details.get("counted") is not None:
-        from robosc.synthesis.symmetry import counted_warnings
-
         return counted_warnings(result)
     if not result.ok or fixpoint is None:
         return []
@@ -127,6 +126,59 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
             else:
                 message = f"no controlled run reaches state '{name}': the supervisor keeps the robot out of it"
                 hint = "fine for a state to avoid (an error); otherwise see why in the explanations of the added conditions"
+            found.append(warning(location.span, message, Code.UNREACHED_STATE, hint))
+    found.sort(key=lambda d: (d.span.path, d.span.line, d.span.column))
+    return found
+
+
+def counted_warnings(result: SynthesisResult) -> list[Any]:
+    """The warnings of :func:`robosc.synthesis.warnings.synthesis_warnings` from a counted
+    synthesis: a requirement that never holds in a reachable state, a state no robot of a group
+    reaches (named for the group's robots), and a controllable event it never allows (from
+    the explanations of :mod:`robosc.synthesis.fleet_why`)."""
+    fp: Any = result.details["counted"]
+    supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
+    fleet, enc = supervisor.fleet, fp.enc
+    reachable = fp.reachable
+
+    def holds_somewhere(requirement: Requirement) -> bool:
+        owner = supervisor.agent_of_event.get(requirement.event)
+        if owner is None:
+            return bool((reachable & enc.boolean(fleet.translator.template(requirement.condition, None))) != enc.false)
+        group, agent = owner
+        template = fleet.translator.template(requirement.condition, agent)
+        for index, counter in enumerate(group.counters):  # some robot at this local state: maybe this one
+            here = reachable & enc.boolean(at_least(counter, 1))
+            if (
+                here != enc.false
+                and (here & enc.boolean(fleet.translator.instantiate(template, group, index))) != enc.false
+            ):
+                return True
+        return False
+
+    found = never_allowed(result) + never_holding(result.network, holds_somewhere)
+    plant = None
+    for group in fleet.groups:
+        rep = group.rep.automata[0]
+        robots = robots_of(group)
+        for location in rep.locations:
+            holding = [i for i, (locations, _) in enumerate(group.local) if locations[0] is location]
+            somewhere = enc.false
+            for index in holding:
+                somewhere |= enc.boolean(at_least(group.counters[index], 1))
+            if (reachable & somewhere) != enc.false:
+                continue
+            plant = reach(enc, fp.initial, fp.relation.values()) if plant is None else plant
+            if (plant & somewhere) == enc.false:
+                message, hint = (
+                    f"state '{location.name}' of {robots} can never be reached: no run of the model leads there",
+                    None,
+                )
+            else:
+                message = f"no controlled run brings any of {robots} to state '{location.name}': the supervisor keeps them out"
+                hint = (
+                    "fine for a state to avoid (an error); otherwise see why with --fleet monolithic on a small fleet"
+                )
             found.append(warning(location.span, message, Code.UNREACHED_STATE, hint))
     found.sort(key=lambda d: (d.span.path, d.span.line, d.span.column))
     return found

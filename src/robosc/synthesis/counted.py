@@ -1,0 +1,102 @@
+"""Synthesis of a fleet by counting its robots (robosc.synthesis.symmetry finds the copies and
+builds the counted network): the same fixed point as any network (robosc.synthesis.symbolic),
+its conditions read back in the fleet's terms; the monolithic method where the fleet cannot
+be counted, saying why."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from robosc.language import model as m
+from robosc.plant.expressions import NO_SPAN, all_of
+from robosc.plant.network import Network
+from robosc.synthesis.explain import explain
+from robosc.synthesis.fleet_why import describer
+from robosc.synthesis.options import DEFAULT, SynthesisOptions
+from robosc.synthesis.progress import Watch
+from robosc.synthesis.readable import readable
+from robosc.synthesis.result import EventGuard, SynthesisResult
+from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
+from robosc.synthesis.symmetry import MIN_AGENTS, CountedSupervisor, NotSymmetric, counted, lift, rename_back
+
+
+def synthesize_counted(
+    network: Network, options: SynthesisOptions | None = None, least: int = MIN_AGENTS, watch: Watch | None = None
+) -> SynthesisResult:
+    """Synthesis by the counter abstraction where the network has a group of at least ``least``
+    symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not.
+    ``watch``: told how far it is."""
+    options = options or DEFAULT
+    start = time.perf_counter()
+    if watch is not None:
+        watch.phase("counting")
+    try:
+        fleet = counted(network, least)
+    except NotSymmetric as reason:
+        result = synthesize_monolithic(network, options, watch)
+        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {reason}")
+        if reason.robots:  # a fleet: say why it was not counted
+            fallback["fleet_note"] = (
+                f"{reason.robots} are copies of each other, but synthesis did not count them: {reason}; "
+                "the supervisor is the monolithic method's (exact; slower on large fleets)"
+            )
+        return SynthesisResult(
+            result.network,
+            result.method,
+            result.ok,
+            result.guards,
+            result.reachable_states,
+            time.perf_counter() - start,
+            result.explanation,
+            fallback,
+        )
+    fp = fixpoint(fleet.network, options, watch)
+    enc = fp.enc
+    described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
+    supervisor = CountedSupervisor(network, fleet, fp)
+    fp.describer = describer(supervisor)
+    details: dict[str, Any] = {
+        "counted": fp,
+        "effort": enc.effort(),
+        "symmetry": f"counted ({described})",
+        "supervisor": supervisor,
+    }
+    if (fp.initial & fp.bad) != enc.false:
+        return SynthesisResult(
+            network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
+        )
+    translator = fleet.translator
+    if watch is not None:
+        watch.phase("conditions")
+    guards = []
+    for event in network.controllable:
+        conditions = [r.condition for r in network.requirements_on(event)]
+        required: m.Expr | None = all_of(conditions) if conditions else None
+        owner = supervisor.agent_of_event.get(event)
+        pairs = [
+            (ce, fleet.moves[ce][1][0].source if owner is not None else None) for ce in supervisor.counted_of(event)
+        ]
+        parts = []
+        for counted_event, source in pairs:
+            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
+            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
+            if (care & ~beyond) == enc.false:
+                continue
+            added = lift(readable(enc, beyond, care), fleet)
+            if source is not None and owner is not None:
+                group, agent = owner
+                back = {v: k for k, v in group.to_rep[id(agent)].items()}
+                here = rename_back(translator.at(group, source), back)
+                added = m.Binary("=>", here, added, m.BOOLEAN, NO_SPAN)
+            parts.append(added)
+        guards.append(EventGuard(event, required, all_of(parts) if parts else None))
+    return SynthesisResult(
+        network,
+        "symmetric",
+        True,
+        tuple(guards),
+        enc.count(fp.reachable),
+        time.perf_counter() - start,
+        details=details,
+    )
