@@ -299,10 +299,123 @@ def warehouse_instances(n: int) -> str:
     ) + "\n"
 
 
+def lift(n: int) -> str:
+    """N robots (instances) share a corridor cell and a lift of capacity 2 to the floor above,
+    where they work, then ride down and go home: each robot in 13 states, one shared lift
+    automaton, thresholds of 1 (the corridor, a robot at a time) and 2 (the lift's riders)."""
+    riders = "count(q in bot: q.riding_up or q.riding_down)"
+    corridor_free = "!any(q in bot: q.corridor or q.waiting or q.returning)"
+    return "\n".join(
+        [
+            "robot LiftFleet {",
+            "    component Lift {",
+            "        incoming message up with type: none",
+            "        incoming message down with type: none",
+            "        outgoing message at_top with type: none",
+            "        outgoing message at_ground with type: none",
+            "        behaviour {",
+            "            initial marked state ground { on request to up goto rising }",
+            "            state rising { on response from at_top goto top }",
+            "            marked state top { on request to down goto sinking }",
+            "            state sinking { on response from at_ground goto ground }",
+            "        }",
+            "    }",
+            f"    component bot[{n}] {{",
+            *(
+                f"        incoming message {name} with type: none"
+                for name in ("go", "call", "board", "alight", "work", "call_down", "board_down", "alight_down", "home")
+            ),
+            "        outgoing message done with type: none",
+            "        behaviour {",
+            "            initial marked state depot { on request to go goto corridor }",
+            "            state corridor { on request to call goto waiting }",
+            "            state waiting { on request to board goto riding_up }",
+            "            state riding_up { on request to alight goto upstairs }",
+            "            state upstairs { on request to work goto working }",
+            "            state working { on response from done goto finished }",
+            "            state finished { on request to call_down goto waiting_down }",
+            "            state waiting_down { on request to board_down goto riding_down }",
+            "            state riding_down { on request to alight_down goto returning }",
+            "            state returning { on request to home goto depot }",
+            "        }",
+            "    }",
+            "    for r in bot {",
+            f"        requirement r.go needs {corridor_free}",
+            f"        requirement r.board needs Lift.ground and {riders} < 2",
+            "        requirement r.alight needs Lift.top",
+            f"        requirement r.board_down needs Lift.top and {riders} < 2",
+            f"        requirement r.alight_down needs Lift.ground and {corridor_free}",
+            "    }",
+            f"    requirement up needs {riders} >= 1",
+            f"    requirement down needs {riders} >= 1",
+            "}",
+        ]
+    ) + "\n"
+
+
+def ring_homes(n: int) -> str:
+    """:func:`ring`, but each robot must be able to get back to a home of its own, its start
+    zone (the only marked state of its component): copies by hand that differ in one place."""
+    zones = 2 * n
+    lines = ["robot Homes {"]
+    for i in range(n):
+        states = []
+        for k in range(zones):
+            initial = "initial " if k == 2 * i else ""
+            marked = "marked " if k == 2 * i else ""
+            states.append(f"            {initial}{marked}state at{k} {{ on request to go{i} goto moving{k} }}")
+            states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
+        lines.append(
+            f"    component R{i} {{\n"
+            f"        incoming message go{i} with type: none\n"
+            f"        outgoing message arrived{i} with type: none\n"
+            "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
+        )
+    for i in range(n):
+        lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones)}")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def crossing(n: int) -> str:
+    """Two kinds of robots whose routes cross: N/2 eastbound (instances east) on a one-way loop
+    of 2N cells, N - N/2 southbound (south) on another; the loops share two crossing cells
+    (east's cells 1 and N+1 are south's cells 1 and N+1), each for one robot of either kind."""
+    zones = 2 * n
+    kinds = {"east": n // 2, "south": n - n // 2}
+    crossings = (1, n + 1)
+    lines = ["robot Crossing {"]
+    for kind, count in kinds.items():
+        starts = ", ".join(f"at{2 * i + 2}" for i in range(count))
+        lines += [
+            f"    component {kind}[{count}] initial {starts} {{",
+            "        incoming message go with type: none",
+            "        outgoing message arrived with type: none",
+            "        behaviour {",
+            *_robot_states(zones),
+            "        }",
+            "    }",
+        ]
+    for kind, other in (("east", "south"), ("south", "east")):
+        parts = []
+        for k in range(zones):
+            nxt = (k + 1) % zones
+            free = f"!any(q in {kind}: q.at{nxt} or q.moving{k} or q.moving{nxt})"
+            if nxt in crossings:
+                free += f" and !any(q in {other}: q.at{nxt} or q.moving{nxt - 1} or q.moving{nxt})"
+            parts.append(f"(r.at{k} => ({free}))")
+        lines += [f"    for r in {kind} {{", f"        requirement r.go needs {' and '.join(parts)}", "    }"]
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
 FLEETS = {
     "ring": ring,
     "warehouse": warehouse,
     "ring_counted": ring_counted,
     "ring_instances": ring_instances,
     "warehouse_instances": warehouse_instances,
+    "lift": lift,
+    "ring_homes": ring_homes,
+    "crossing": crossing,
 }  # fleet families (benchmarks/fleet_synthesis.py): N robots

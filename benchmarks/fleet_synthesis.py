@@ -5,6 +5,11 @@ held by at most one robot; ``warehouse`` — a one-way loop of 2N+2 aisle zones 
 robots pass only while it is open and one charger for one robot. Each is written as the
 original's users write fleets (a copied component per robot, a requirement per robot naming
 every other robot) and, as ``ring_instances`` / ``warehouse_instances``, with instances.
+``lift`` — robots sharing a corridor cell (one at a time) and a lift of capacity 2 with its
+own automaton; ``ring_homes`` — the ring where each robot must be able to get back to a home
+of its own (copies by hand that differ in their marked state); ``crossing`` — two kinds of
+robots (two instance arrays, alike automata) on two one-way loops that share two crossing
+cells, each for one robot of either kind.
 
 Methods (``SynthesisOptions.fleet``): ``counted`` (the default: robots that are copies counted
 per state) and ``monolithic`` (the reference). Each run is a process of its own with a time

@@ -58,8 +58,12 @@ def test_instances_are_components_with_their_own_names_namespaces_and_start():
 
 def test_for_blocks_and_quantifiers_expand_per_instance():
     model = check_text(FLEET).model
-    requirements = {r.communications[0].name: render(r.condition) for r in model.requirements}
-    assert requirements["bot2.go"] == "count(bot1.busy, bot2.busy, bot3.busy) <= 1 and !bot1.busy and !bot3.busy"
+    requirements = {r.communications[0].name: r.condition for r in model.requirements}
+    count = requirements["bot2.go"].left.left  # type: ignore[attr-defined]
+    assert [render(term) for term in count.terms] == ["bot1.busy", "bot2.busy", "bot3.busy"]  # one per instance
+    # shown as written: a count over the group, and what 'any' expanded to for the others
+    assert render(requirements["bot2.go"]) == "count(q in bot: q.busy) <= 1 and !bot1.busy and !bot3.busy"
+    requirements = {name: render(condition) for name, condition in requirements.items()}
     assert requirements["bot1.go"] == "Door.closed"  # the last one written for bot1
     assert len(model.requirements) == 4
 
@@ -446,7 +450,7 @@ def test_one_robot_singled_out_in_a_for_block_is_read_per_instance():
     model = check_text(SINGLED_OUT.format(n=4)).model
     assert model is not None
     texts = sorted(r.description for r in build_network(model).requirements)
-    count = "count(bot1.lift, bot2.lift, bot3.lift, bot4.lift) < 2"
+    count = "count(q in bot: q.lift) < 2"  # over bot1 .. bot4 (test_a_count_over_a_group_...)
     assert texts == [
         "requirement bot1.go needs !(bot2.top or bot3.top or bot4.top)",
         "requirement bot1.go needs true",  # bot1.depot => (true or ...)
@@ -498,3 +502,45 @@ def test_an_instance_of_another_group_cannot_be_singled_out():
     assert result.model is None and any("stands for an instance" in d.message for d in result.diagnostics), (
         result.render()
     )
+
+
+def test_two_arrays_of_alike_robots_are_two_kinds_counted_apart() -> None:
+    """Eastbound and southbound robots (two instance arrays) have the same automaton; their
+    requirements name their own kind as a whole and the other kind at the crossings. Before:
+    one group of all six, 'a condition names some agents of east and not the others', and
+    monolithic synthesis. Now two groups, counted, and the monolithic supervisor."""
+    from families import crossing
+
+    _, fleet = agree_with_monolithic(crossing(6), least=3)
+    symmetry = fleet.details["symmetry"]  # type: ignore[attr-defined]
+    assert symmetry.startswith("counted (east: 3 agents") and "south: 3 agents" in symmetry
+
+
+@pytest.mark.parametrize(
+    ("written", "shown"),
+    [
+        ("count(q in bot: q.busy) <= 1", "count(q in bot: q.busy) <= 1"),
+        ("count(r in bot: r.busy and Door.closed) >= 1", "count(q in bot: q.busy and Door.closed) >= 1"),
+        ("count(bot1.busy, bot2.busy, bot3.busy) <= 1", "count(bot1.busy, bot2.busy, bot3.busy) <= 1"),  # written out
+        ("count(q in bot: q.busy or bot1.idle) <= 1", "count(bot1.busy or bot1.idle, bot2.busy or bot1.idle, "
+         "bot3.busy or bot1.idle) <= 1"),  # not the same of each: shown term by term
+    ],
+)
+def test_a_count_over_a_group_is_shown_as_written_over_the_group(written: str, shown: str) -> None:
+    text = FLEET.replace("requirement bot1.go needs Door.closed", f"requirement bot1.go needs {written}")
+    model = check_text(text).model
+    assert model is not None
+    assert render(model.requirements[-1].condition) == shown
+
+
+def test_an_added_condition_over_the_lift_fleet_does_not_grow_with_the_fleet() -> None:
+    """Before: 'count(bot1.riding_down, bot2.riding_down, ...)' in every added condition, so that
+    each grew with the fleet (the issue measured 7 KB at 4 robots, 1.16 MB at 16 for its lift)."""
+    from families import lift
+
+    sizes = []
+    for n in (3, 6):
+        result = synthesize_model(check_text(lift(n)).model)
+        assert result.method == "symmetric"
+        sizes.append(max(len(render(g.added)) for g in result.added_guards))
+    assert sizes[0] == sizes[1] < 500

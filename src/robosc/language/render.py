@@ -6,6 +6,8 @@ synthesized guards, explanations.
 
 from __future__ import annotations
 
+import re
+
 from robosc.language import model as m
 from robosc.language.keywords import escape_name
 
@@ -72,5 +74,27 @@ def render(e: m.Expr) -> str:
     if isinstance(e, m.DataRef):
         return "value" + steps(e.steps)
     if isinstance(e, m.Count):
-        return f"count({', '.join(render(term) for term in e.terms)})"
+        return _quantified(e) or f"count({', '.join(render(term) for term in e.terms)})"
     return "<invalid>"
+
+
+def _quantified(e: m.Count) -> str | None:
+    """``e`` as it is written over an array, ``count(q in bot: ...)``, where it counts the same
+    condition of each instance ``bot1``, ``bot2``, ... in order (a count written out, or of
+    conditions that differ, is None: its terms are shown)."""
+    if not e.group or len(e.terms) < 2:
+        return None
+    texts = [render(term) for term in e.terms]
+    binder = next((n for n in ("q", "p", "r", "s") if not any(re.search(rf"(?<![\w.]){n}\.", t) for t in texts)), None)
+    if binder is None:
+        return None
+    template = None
+    for index, text in enumerate(texts, 1):
+        me = re.compile(r"(?<![\w.])" + re.escape(escape_name(f"{e.group}{index}")) + r"(?=\.)")
+        if not me.search(text):
+            return None
+        body = me.sub(binder, text)
+        if template is not None and body != template:
+            return None
+        template = body
+    return f"count({binder} in {escape_name(e.group)}: {template})"

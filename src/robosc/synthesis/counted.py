@@ -83,7 +83,7 @@ def synthesize_counted(
             beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
             if (care & ~beyond) == enc.false:
                 continue
-            added = lift(readable(enc, beyond, care), fleet)
+            added = lift(readable(enc, beyond, care), fleet, network)
             if source is not None and owner is not None:
                 group, agent = owner
                 back = {v: k for k, v in group.to_rep[id(agent)].items()}

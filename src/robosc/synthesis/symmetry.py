@@ -153,8 +153,8 @@ def _map(agent: Agent, rep: Agent) -> dict[Any, Any]:
 
 
 def groups(network: Network) -> list[Group]:
-    """The groups of two or more agents that are copies of each other, and whose events no
-    automaton outside the agent shares."""
+    """The groups of two or more agents that are copies of each other (instances of one array,
+    or components copied by hand), and whose events no automaton outside the agent shares."""
     agents = _agents(network)
     owner_of_event: dict[Event, set[str]] = {}
     for automaton in network.automata:
@@ -165,7 +165,9 @@ def groups(network: Network) -> list[Group]:
         names = {a.name for a in agent.automata}
         if any(not owner_of_event.get(e, set()) <= names for e in agent.events):
             continue  # an event shared with something outside the agent
-        by_signature.setdefault(_signature(agent), []).append(agent)
+        # instances of two arrays (`component east[4]`, `component south[4]`) are two kinds of
+        # robots, even where their automata are alike: the requirements say which is which
+        by_signature.setdefault((agent.component.group, _signature(agent)), []).append(agent)
     found = []
     for members in by_signature.values():
         if len(members) < 2:
@@ -946,11 +948,18 @@ class CountedSupervisor:
         return bool((self._state(state)[0] & self.fp.bad) == self.fp.enc.false)
 
 
-def lift(e: m.Expr, fleet: Counted) -> m.Expr:
+def lift(e: m.Expr, fleet: Counted, network: Network) -> m.Expr:
     """An expression over the counted network with each counter written as a ``count(...)``
     of the original model: how many of the group's agents are in that local state."""
     counters = {c: (group, i) for group in fleet.groups for i, c in enumerate(group.counters)}
     translator = fleet.translator
+    # a count over every instance of an array, in order, is written `count(q in bot: ...)`;
+    # one over some of them (a robot singled out, copies by hand) names each
+    sizes: dict[str | None, int] = {}
+    for automaton in network.automata:
+        if automaton.kind is AutomatonKind.COMPONENT and automaton.component is not None:
+            sizes[automaton.component.group] = sizes.get(automaton.component.group, 0) + 1
+    whole = {group.name: _whole_array(group, sizes) for group in fleet.groups}
 
     def agent_at(group: Group, agent: Agent, index: int) -> m.Expr:
         back = {v: k for k, v in group.to_rep[id(agent)].items()}
@@ -960,10 +969,19 @@ def lift(e: m.Expr, fleet: Counted) -> m.Expr:
         if isinstance(node, m.VariableRef) and node.variable in counters:
             group, index = counters[node.variable]
             terms = tuple(agent_at(group, agent, index) for agent in group.agents)
-            return m.Count(group.name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
+            name = group.name if whole[group.name] else ""
+            return m.Count(name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
         return None
 
     return replace(e, counted)
+
+
+def _whole_array(group: Group, sizes: dict[str | None, int]) -> bool:
+    """Whether ``group``'s agents are the instances of one array (``sizes``: how many each
+    array has), all of them, in order."""
+    components = [agent.component for agent in group.agents]
+    in_order = all(c.group == group.name and c.index == i for i, c in enumerate(components, 1))
+    return in_order and sizes.get(group.name) == len(components)
 
 
 def rename_back(e: m.Expr, names: dict[Any, Any]) -> m.Expr:
