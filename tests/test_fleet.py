@@ -543,4 +543,8 @@ def test_an_added_condition_over_the_lift_fleet_does_not_grow_with_the_fleet() -
         result = synthesize_model(check_text(lift(n)).model)
         assert result.method == "symmetric"
         sizes.append(max(len(render(g.added)) for g in result.added_guards))
+        go = next(render(g.added) for g in result.added_guards if g.event.name == "bot1.go")
+        # not split on where the lift is when each part says the same (it was
+        # "(Lift.ground or Lift.top) and X or (Lift.rising or Lift.sinking) and X")
+        assert go == "bot1.depot => (count(q in bot: q.riding_down) < 2 or count(q in bot: q.riding_up) >= 1)"
     assert sizes[0] == sizes[1] < 500

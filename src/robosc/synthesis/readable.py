@@ -13,6 +13,7 @@ from typing import Any
 from dd import cudd
 
 from robosc.language import model as m
+from robosc.language.render import render
 from robosc.plant.expressions import FALSE, NO_SPAN, TRUE, all_of, any_of, negate
 from robosc.plant.network import Automaton, AutomatonKind
 from robosc.synthesis.encoding import BDD, Encoding, Field
@@ -108,11 +109,21 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
         groups.setdefault(key, []).append(value)
         previous = remainders.get(key)
         remainders[key] = (remainder, care_here if previous is None else previous[1] | care_here)
-    subs = {}
-    for key in groups:
+    subs: dict[int, m.Expr] = {}
+    written: dict[str, int] = {}  # a remainder's text -> the first group written so
+    for key in list(groups):
         remainder, care_here = remainders[key]
-        if (remainder & care_here) != enc.false:
-            subs[key] = _expr(enc, remainder, care_here, rest)
+        if (remainder & care_here) == enc.false:
+            continue
+        sub = _expr(enc, remainder, care_here, rest)
+        # two groups whose remainders read the same where each applies are one group:
+        # "(Lift.ground or Lift.top) and X or (Lift.rising or Lift.sinking) and X" is "X"
+        same = written.get(render(sub))
+        if same is not None:
+            groups[same] += groups.pop(key)
+            continue
+        written[render(sub)] = key
+        subs[key] = sub
     # Where the answer is already "true", the other groups need not exclude those values:
     # "A or (!A and B)" reads better as "A or B".
     settled = [v for key, sub in subs.items() if sub is TRUE for v in groups[key]]
