@@ -199,7 +199,7 @@ def test_random_models_match_libfaudes(text: str) -> None:
         ("warehouse_instances", 3),
         ("ring", 3),
         ("lift", 3),
-        ("crossing", 4),
+        ("crossing", 3),
     ],
 )
 def test_fleets_match_libfaudes(family: str, n: int) -> None:
