@@ -19,6 +19,9 @@ preimage computations) are printed next to the wall time and the peak memory. Wh
 finish, a third run asserts that they found the same supervisor (each event allowed in the
 same states, over the states the monolithic supervisor reaches): the last column.
 
+The largest condition synthesis added (as robosc prints it) and the size of the generated
+supervisor module are printed too (synthesis time includes neither).
+
 Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,8,16,32]
           [--methods counted,monolithic] [--timeout 600] [--memory-gb 2] [--baseline REV]
 
@@ -70,7 +73,14 @@ if method == "check":
 result = synthesize_model(model, options=SynthesisOptions(fleet=method))
 done = time.perf_counter()
 effort = result.details.get("effort") or {}
+from robosc.language.render import render
+condition = max((len(render(g.added)) for g in result.guards if g.added is not None), default=0)
+module = None
+if result.ok:
+    from robosc.api import supervisor_module
+    module = len(supervisor_module(result).encode())
 print(json.dumps({
+    "condition": condition, "module": module,
     "lines": len(text.splitlines()), "check": checked - start, "synthesis": done - checked,
     "states": result.reachable_states, "ok": result.ok, "added": len(result.added_guards),
     "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **effort,
@@ -142,9 +152,9 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
     print(f"limits: {args.timeout:g} s and {args.memory_gb:g} GB of address space per run\n")
     print(
         "| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages "
-        "| controlled states | same supervisor |"
+        "| controlled states | largest added condition, chars | module, KB | same supervisor |"
     )
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     methods = args.methods.split(",")
     for family in args.families.split(","):
         for n in sizes:
@@ -155,7 +165,7 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
             for label, method, source in runs:
                 f = measure(family, n, method, args.timeout, args.memory_gb, source)
                 if "failed" in f:
-                    print(f"| {family} | {n} | {label} | | | {f['failed']} | | | | | | |", flush=True)
+                    print(f"| {family} | {n} | {label} | | | {f['failed']} | | | | | | | | |", flush=True)
                     continue
                 same = ""
                 finished += source is None  # the baseline's runs are not compared
@@ -165,7 +175,8 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
                 print(
                     f"| {family} | {n} | {label} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
                     f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
-                    f"{f.get('preimages', '-')} | {f['states']:,} | {same} |",
+                    f"{f.get('preimages', '-')} | {f['states']:,} | {f['condition']:,} | "
+                    f"{'-' if f['module'] is None else format(f['module'] / 1024, ',.0f')} | {same} |",
                     flush=True,
                 )
 
