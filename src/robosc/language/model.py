@@ -10,7 +10,7 @@ the parse tree. Entities that need to know their component carry its name in
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from enum import Enum
 
 from robosc.language.source import Span
@@ -246,6 +246,30 @@ def walk(expr: Expr) -> Iterator[Expr]:
             stack.append(node.operand)
         elif isinstance(node, Count):
             stack += reversed(node.terms)
+
+
+def walk_all(exprs: Iterable[Expr]) -> Iterator[Expr]:
+    """Every expression inside each of ``exprs``, each object once: a part several of them
+    share (a quantifier inside a ``for`` block that does not read its variable, resolved once
+    for every instance) is walked once, so that a fleet costs linear time, not quadratic."""
+    seen: set[int] = set()
+    keep: list[Expr] = []  # (the ids stay theirs while they are seen)
+    for root in exprs:
+        stack = [root]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, (Binary, Unary, Count)):
+                if id(node) in seen:
+                    continue
+                seen.add(id(node))
+                keep.append(node)
+            yield node
+            if isinstance(node, Binary):
+                stack += [node.right, node.left]
+            elif isinstance(node, Unary):
+                stack.append(node.operand)
+            elif isinstance(node, Count):
+                stack += reversed(node.terms)
 
 
 # ---- communication ----------------------------------------------------------
@@ -541,12 +565,9 @@ def synthesis_variables(model: Model) -> dict[Variable, Expr]:
     """Variables that take part in synthesis (named in a guard, requirement or provide
     condition), each with the first place that names it."""
     found: dict[Variable, Expr] = {}
-    for role, expr in expressions_of(model):
-        if role == "assignment":
-            continue
-        for node in walk(expr):
-            if isinstance(node, VariableRef):
-                found.setdefault(node.variable, node)
+    for node in walk_all(expr for role, expr in expressions_of(model) if role != "assignment"):
+        if isinstance(node, VariableRef):
+            found.setdefault(node.variable, node)
     return found
 
 

@@ -18,7 +18,7 @@ from robosc.language.model import (
     ResultTransition,
     TauTransition,
     Unary,
-    walk,
+    walk_all,
 )
 
 
@@ -73,12 +73,11 @@ def expressions(model: Model) -> Iterator[Expr]:
 
 
 def check(model: Model) -> Iterator[Diagnostic]:
-    for expr in expressions(model):
-        for node in walk(expr):
-            if isinstance(node, Binary) and node.op == "/" and value(node.right) == 0:
-                yield error(
-                    node.span,
-                    "division by zero: this can never be computed",
-                    Code.CONSTANT,
-                    "divide by something that is not zero",
-                )
+    for node in walk_all(expressions(model)):  # a part several expressions share: once
+        if isinstance(node, Binary) and node.op == "/" and value(node.right) == 0:
+            yield error(
+                node.span,
+                "division by zero: this can never be computed",
+                Code.CONSTANT,
+                "divide by something that is not zero",
+            )

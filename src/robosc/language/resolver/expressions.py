@@ -52,6 +52,10 @@ class ExpressionResolver:
         # an implication that is an operand of a looser operator -> how it grouped, for its type error
         self.hints: dict[int, str] = {}
         self.bound: dict[str, str] = {}  # instance variables (``q`` in ``all(q in bot: ...)``) -> instance
+        # quantifiers already resolved where what they read is bound alike (see _shared_key), and
+        # the names each quantifier's body uses
+        self.quantified: dict[tuple[object, ...], m.Expr] = {}
+        self.names_in: dict[int, tuple[s.Quantifier, frozenset[str]]] = {}
 
     # -- instances -------------------------------------------------------------------
     def group(self, name: s.Name, binder: s.Name, what: str) -> list[str] | None:
@@ -120,6 +124,12 @@ class ExpressionResolver:
                 terms.append(self.expr(arg, context))
         else:
             group = syntax.group.text
+            # inside `for r in bot`, `any(q in bot: q.out1)` is the same for every r: resolved
+            # once and shared, so that a fleet's requirements grow linearly with it, not squared
+            key = self._shared_key(syntax, context)
+            shared = self.quantified.get(key) if key is not None else None
+            if shared is not None:
+                return shared
             names = self.group(syntax.group, syntax.binder, f"'{kind}'")
             if names is None:
                 return m.Invalid(syntax.span)
@@ -136,8 +146,24 @@ class ExpressionResolver:
                 return m.Invalid(syntax.span)
         terms = [simplify.fold(term) for term in terms]
         if kind == "count":
-            return m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
-        return simplify.join("and" if kind == "all" else "or", terms, syntax.span)
+            made: m.Expr = m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
+        else:
+            made = simplify.join("and" if kind == "all" else "or", terms, syntax.span)
+        if isinstance(syntax, s.Quantifier):
+            key = self._shared_key(syntax, context)
+            if key is not None:
+                self.quantified[key] = made
+        return made
+
+    def _shared_key(self, syntax: s.Quantifier, context: ExprContext) -> tuple[object, ...] | None:
+        """What resolving ``syntax`` depends on: where it is, in which context, and the instances
+        bound to the names its body uses (not the others: a `for` variable it does not name)."""
+        known = self.names_in.get(id(syntax))
+        if known is None:  # (the syntax is kept with it: its id stays its own)
+            known = self.names_in[id(syntax)] = (syntax, frozenset(_names(syntax.body)))
+        used = known[1]
+        bound = tuple(sorted((n, i) for n, i in self.bound.items() if n in used or n == syntax.group.text))
+        return (id(syntax), id(context.component), id(context.value_type), context.where, context.assigning, bound)
 
     def _same_instance(self, syntax: s.Binary) -> m.Expr | None:
         """``q = r`` / ``q != r`` between instance variables, or ``r = bot1`` / ``r != bot1``
@@ -413,3 +439,17 @@ class ExpressionResolver:
             resolved.append(m.FieldStep(prop))
             data_type = prop.type
         return tuple(resolved), data_type
+
+
+def _names(node: object) -> Iterator[str]:
+    """Every name written in a piece of syntax."""
+    if isinstance(node, s.Name):
+        yield node.text
+        return
+    if isinstance(node, (list, tuple)):
+        for item in node:
+            yield from _names(item)
+        return
+    for attribute in getattr(type(node), "__match_args__", ()):
+        if attribute != "span":
+            yield from _names(getattr(node, attribute))
