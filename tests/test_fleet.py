@@ -565,3 +565,17 @@ def test_a_quantifier_that_does_not_read_the_for_variable_is_resolved_once_for_t
     depot = [g for g in gos if isinstance(g.left, m.StateRef) and g.left.state.name == "depot"]  # type: ignore[attr-defined]
     first, second = depot[0], depot[1]
     assert first is not second and first.right.right.operand is second.right.right.operand  # type: ignore[attr-defined]
+
+
+def test_robots_with_homes_of_their_own_are_not_counted_and_synthesize_says_why() -> None:
+    """The ring where each robot must get back to its own start (copies by hand, each marked
+    at its own zone): before, only --stats said 'no 3 components are copies of each other'."""
+    from families import ring_homes
+
+    result = synthesize_model(check_text(ring_homes(3)).model)
+    assert result.method == "symbolic"
+    assert result.details["fleet_note"] == (
+        "R0 .. R2 are copies of each other, but synthesis did not count them: they differ in their marked states "
+        "(R0 .. R2: each may rest in a place of its own), and synthesis counts only robots whose marked states are "
+        "the same; the supervisor is the monolithic method's (exact; slower on large fleets)"
+    )

@@ -106,7 +106,7 @@ def _own(agent: Agent) -> re.Pattern[str]:
     return re.compile(r"(?<![\w.])(" + "|".join(sorted(set(names), key=len, reverse=True)) + r")(?=\.)")
 
 
-def _signature(agent: Agent) -> tuple[Any, ...]:
+def _signature(agent: Agent, marking: bool = True) -> tuple[Any, ...]:
     """What two copies have in common: the automata's shapes, their own names replaced by
     their position, events by the order they first appear."""
     own = _own(agent)
@@ -119,7 +119,7 @@ def _signature(agent: Agent) -> tuple[Any, ...]:
     event_index = {e: i for i, e in enumerate(agent.events)}
     shapes = []
     for a in agent.automata:
-        locations = tuple((loc.name, loc.marked) for loc in a.locations)
+        locations = tuple((loc.name, loc.marked if marking else None) for loc in a.locations)
         edges = tuple(
             (
                 edge.source.name,
@@ -653,7 +653,19 @@ def counted(network: Network, least: int = 2) -> Counted:
     raises :class:`NotSymmetric` saying why there is none."""
     found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
-        raise NotSymmetric(f"no {least} components are copies of each other")
+        reason = NotSymmetric(f"no {least} components are copies of each other")
+        alike: dict[Any, list[Agent]] = {}
+        for agent in _agents(network):
+            alike.setdefault((agent.component.group, _signature(agent, marking=False)), []).append(agent)
+        homes = [agents for agents in alike.values() if len(agents) >= least]
+        if homes:  # copies but for where each may rest: a home of its own
+            names = [a.component.name for a in homes[0]]
+            reason = NotSymmetric(
+                f"they differ in their marked states ({names[0]} .. {names[-1]}: each may rest in a place of its "
+                "own), and synthesis counts only robots whose marked states are the same"
+            )
+            reason.robots = f"{names[0]} .. {names[-1]}"
+        raise reason
     copies = "; ".join(robots_of(group) for group in found)
     while True:  # each round splits a group into smaller ones, or ends
         try:
