@@ -179,6 +179,7 @@ class Plan:
     communications: tuple[Communication, ...]
     automata: tuple[tuple[str, str | None], ...]  # (network automaton name, field or None: one location), network order
     variables: tuple[tuple[str, str], ...]  # (Component.variable, field), synthesis variables, network order
+    shared: tuple[tuple[str, str], ...] = ()  # (method, Python condition): long conditions written once
 
     @property
     def controllable(self) -> tuple[EventPlan, ...]:
@@ -295,7 +296,7 @@ class _Planner:
             for behaviour in component.behaviours:
                 for v in behaviour.variables:
                     variables[v] = ids.new("v", component.name, v.name)
-        self.names = Names(locations, variables)
+        self.names = Names(locations, variables, shared={})
         self.checked = Names(locations, variables, checked=True)  # where received data is read
         self.kept = set(network.variables)
         self.conversions: dict[m.EnumType, Conversion] = {}
@@ -709,6 +710,7 @@ class _Planner:
             tuple(self.communications.values()),
             tuple((a.name, None if _constant(a) else self.automaton_field[a]) for a in self.network.automata),
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
+            tuple((name, code) for code, name in (self.names.shared or {}).items()),
         )
 
 

@@ -16,7 +16,7 @@ import re
 from collections.abc import Mapping
 
 from robosc.language import model as m
-from robosc.record import record
+from robosc.record import field, record
 
 _OPERATORS = {
     "=": "==",
@@ -80,6 +80,10 @@ class Names:
     # received data is read through the runtime's checks (num, whole, flag, text), and a
     # computation on it must give a number: unreadable data raises instead of passing as a value
     checked: bool = False
+    # where set: a long condition over the state (a count over a fleet, what `any` over it
+    # expands to) is written once, as a method of the supervisor, and called where it is used:
+    # its code -> the method's name (see :func:`python`); the module stays linear in the fleet
+    shared: dict[str, str] | None = field(default=None, compare=False, repr=False)
 
 
 _READERS = {
@@ -103,8 +107,29 @@ def step_path(steps: tuple[m.Step, ...]) -> tuple[str | int, ...]:
     return tuple(s.property.name if isinstance(s, m.FieldStep) else s.index for s in steps)
 
 
+SHARED_FROM = 160  # characters: a condition this long over the state is a method of its own
+
+
 def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
-    """``expr`` as a Python expression; ``owner`` is how the code names the supervisor."""
+    """``expr`` as a Python expression; ``owner`` is how the code names the supervisor. With
+    ``names.shared``, a long condition over the state is a method call (``self._part3()``),
+    evaluated where it stands, as the expression itself would be."""
+    code = _python(expr, names, owner)
+    shared = names.shared
+    if shared is None or owner != "self" or len(code) < SHARED_FROM or not isinstance(expr, _SHAREABLE):
+        return code
+    if any(isinstance(n, m.DataRef) for n in m.walk(expr)):
+        return code  # received data: a handler's local
+    name = shared.get(code)
+    if name is None:
+        name = shared[code] = f"_part{len(shared)}"
+    return f"self.{name}()"
+
+
+_SHAREABLE = (m.Count, m.Binary, m.Unary)
+
+
+def _python(expr: m.Expr, names: Names, owner: str) -> str:
     if isinstance(expr, m.Literal):
         return constant(expr.value)
     if isinstance(expr, m.EnumLiteral):
