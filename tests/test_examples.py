@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from conftest import EXAMPLES
-from robosc.api import load_model
+from robosc.api import load_model, restriction
 from robosc.language import model as m
 
 
@@ -62,7 +62,7 @@ def test_shelf_picker_shows_what_the_supervisor_buys():
     assert [(g.event.name, render(g.added)) for g in result.added_guards] == [
         ("pick.c_trigger", "Tray.empty or Tray.one")
     ]
-    why = result.why("pick.c_trigger")
+    why = restriction(result, "pick.c_trigger")
     assert why is not None and not why.never
     assert why.state.endswith("Base.at_shelf, Arm.stowed, Tray.two")
     assert [s.event.name for s in why.consequence.path] == ["pick.u_response"]
@@ -80,7 +80,7 @@ def test_shelf_picker_without_unload_recovery_points_at_the_unhandled_error():
     broken = text.replace("on error from unload goto two", "")
     assert broken != text
     result = synthesize_model(check_text(broken).model)
-    why = result.why("pick.c_trigger")
+    why = restriction(result, "pick.c_trigger")
     assert why is not None and why.never
     assert (
         "after drop.c_trigger, drop.u_response, dock.c_trigger, dock.u_response, unload.c_trigger the uncontrollable "

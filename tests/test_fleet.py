@@ -16,6 +16,7 @@ from robosc.plant import build_network
 from robosc.synthesis.counted import synthesize_counted
 from robosc.synthesis.explicit import synthesize_explicit
 from robosc.synthesis.options import SynthesisOptions
+from robosc.synthesis.restrictions import restriction
 from robosc.synthesis.symbolic import synthesize_monolithic
 from robosc.synthesis.symmetry import counted
 
@@ -398,7 +399,7 @@ def test_a_counted_fleet_explains_its_conditions_naming_its_robots(text: str):
     added = [g.event.name for g in mono.added_guards]
     assert added and added == [g.event.name for g in fleet.added_guards]
     for event in added:
-        mine, theirs = fleet.why(event), mono.why(event)
+        mine, theirs = restriction(fleet, event), restriction(mono, event)
         assert theirs is not None and mine is not None, event
         assert mine.never == theirs.never and len(mine.path) == len(theirs.path), event
         assert "the same for every robot of bot (bot1 .. bot3)" in mine.note

@@ -12,6 +12,7 @@ from robosc.cli.main import main
 from robosc.language.render import render
 from robosc.plant import build_network
 from robosc.synthesis import synthesize, synthesize_explicit
+from robosc.synthesis.restrictions import restriction
 
 # Ramadge & Wonham's small factory: machine 1 makes a part into a one-slot buffer,
 # machine 2 takes it out. A part made while the buffer is full overflows it.
@@ -304,7 +305,7 @@ robot Grab {
 
 def test_added_guard_is_explained_by_a_shortest_run_and_what_would_follow():
     result = synthesize_model(load(SMALL_FACTORY))
-    why = result.why("make.c_trigger")
+    why = restriction(result, "make.c_trigger")
     assert why is not None and not why.never
     assert [s.event.name for s in why.path] == ["make.c_trigger", "make.u_response", "make.c_reset"]
     assert why.state == "Buffer.full" and why.after == "make.wait, Buffer.full"
@@ -314,14 +315,14 @@ def test_added_guard_is_explained_by_a_shortest_run_and_what_would_follow():
     # the run is one of the controlled system, and its last state really disables make
     state = result.state({"Buffer": "full"})
     assert result.controlled(state) and not result.allows("make.c_trigger", state)
-    assert result.why("take.c_trigger") is None  # nothing added to take
+    assert restriction(result, "take.c_trigger") is None  # nothing added to take
 
 
 def test_event_synthesis_never_allows_is_a_warning_with_its_reason():
     from robosc.synthesis.warnings import synthesis_warnings
 
     result = synthesize_model(load(GRAB))
-    why = result.why("grab.c_trigger")
+    why = restriction(result, "grab.c_trigger")
     assert why is not None and why.never and why.path == ()
     assert [s.event.name for s in why.consequence.path] == ["grab.u_error"]
     assert "stuck outside a marked state: Grabber.grabbing)" in why.consequence.reason
@@ -401,7 +402,7 @@ def test_the_explanation_names_the_fix_where_it_goes() -> None:
     from robosc.synthesis.warnings import synthesis_warnings
 
     result = synthesize_model(load(GRAB))
-    why = result.why("grab.c_trigger")
+    why = restriction(result, "grab.c_trigger")
     assert why is not None
     [fix] = why.consequence.fixes
     assert fix.text.startswith("add 'on error from grab' to state grabbing of Grabber: grab can end with an error")
@@ -430,7 +431,7 @@ robot Doors {
     requirement close needs Door.closed
 }
 """
-    why = synthesize_model(load(door)).why("open")
+    why = restriction(synthesize_model(load(door)), "open")
     assert why is not None and why.never
     [fix] = why.consequence.fixes
     assert fix.text == (
@@ -453,7 +454,7 @@ def test_only_components_that_are_really_stuck_are_blamed() -> None:
         }
     }
     requirement wave"""
-    why = synthesize_model(load(GRAB.replace("\n    requirement wave", detector, 1))).why("grab.c_trigger")
+    why = restriction(synthesize_model(load(GRAB.replace("\n    requirement wave", detector, 1))), "grab.c_trigger")
     assert why is not None
     assert "Grabber stays in grabbing" in why.consequence.reason
     assert "Detector stays" not in why.consequence.reason
@@ -464,7 +465,7 @@ def test_a_missing_error_transition_is_named_before_the_requirements_it_leaves_s
     the missing transition in Tray.emptying, not the requirements that then keep Base put."""
     text = (EXAMPLES / "shelf_picker.rscd").read_text()
     broken = "\n".join(line for line in text.splitlines() if "on error from unload" not in line)
-    why = synthesize_model(load(broken)).why("pick.c_trigger")
+    why = restriction(synthesize_model(load(broken)), "pick.c_trigger")
     assert why is not None
     assert [f.text.split(":")[0] for f in why.consequence.fixes] == [
         "add 'on error from unload' to state emptying of Tray"

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from robosc.synthesis.compare import Comparison
     from robosc.synthesis.options import SynthesisOptions
     from robosc.synthesis.progress import Progress
-    from robosc.synthesis.result import SynthesisResult
+    from robosc.synthesis.result import Restriction, SynthesisResult
 
 __all__ = [
     "CheckResult",
@@ -43,6 +43,7 @@ __all__ = [
     "format_text",
     "load_model",
     "plan_supervisor",
+    "restriction",
     "run_world",
     "simulator",
     "supervisor_module",
@@ -190,6 +191,16 @@ def cross_check(
     explicit = synthesize_explicit(network)
     symbolic = synthesize_symbolic(network, options or DEFAULT)
     return explicit, symbolic, compare(explicit, symbolic)
+
+
+def restriction(result: SynthesisResult, event: str) -> Restriction | None:
+    """Why synthesis added a condition to the controllable event ``event`` (its name): a
+    shortest run to a state where the supervisor holds it back, where it would lead and what
+    would go wrong from there, with fixes; None when synthesis added nothing to it. Computed
+    on request (``robosc synthesize`` prints it under "why synthesis added these conditions")."""
+    from robosc.synthesis.restrictions import restriction as made
+
+    return made(result, event)
 
 
 def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:

@@ -33,6 +33,7 @@ from robosc.synthesis.options import (
     SynthesisOptions,
     order_problem,
 )
+from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import synthesis_warnings, why_lines
 from robosc.wrapping import fill
@@ -84,7 +85,7 @@ def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -
                 "kind": g.event.kind.value,
                 "required": render(g.required) if g.required is not None else None,
                 "added": render(g.added) if g.added is not None else None,
-                "why": _why(result.why(g.event)) if g.added is not None else None,
+                "why": _why(why_restricted(result, g.event)) if g.added is not None else None,
             }
             for g in result.guards
         ],
@@ -142,7 +143,7 @@ def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Co
         rows.append((guard.event.name, required, added))
     headers = ("controllable event", "your condition", "added by synthesis")
     click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=columns))
-    restrictions = [r for r in (result.why(g.event) for g in result.added_guards) if r is not None]
+    restrictions = [r for r in (why_restricted(result, g.event) for g in result.added_guards) if r is not None]
     if result.method == "symmetric":  # a fleet's robots are restricted alike: each explanation once
         once: dict[str, Restriction] = {}
         for restriction in restrictions:

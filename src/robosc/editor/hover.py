@@ -108,6 +108,7 @@ def guard_notes(result: Any) -> dict[str, list[str]]:
     """Communication name -> a Markdown line per controllable event: the user's condition and
     the one synthesis added, with why (plain data: made where synthesis ran, shown on hover)."""
     from robosc.language.render import render
+    from robosc.synthesis.restrictions import restriction as why_restricted
     from robosc.synthesis.warnings import why_lines
 
     if not result.ok:
@@ -120,7 +121,7 @@ def guard_notes(result: Any) -> dict[str, list[str]]:
         line = f"- `{guard.event.name}` needs `{required}`"
         if guard.added is not None:
             line += f"; **synthesis added** `{render(guard.added)}`"
-            restriction = result.why(guard.event)
+            restriction = why_restricted(result, guard.event)
             if restriction is not None:
                 line += "\n\n```\n" + "\n".join(why_lines(restriction)) + "\n```"
         notes.setdefault(guard.event.communication.name, []).append(line)

@@ -118,11 +118,12 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
         sub = _expr(enc, remainder, care_here, rest)
         # two groups whose remainders read the same where each applies are one group:
         # "(Lift.ground or Lift.top) and X or (Lift.rising or Lift.sinking) and X" is "X"
-        same = written.get(render(sub))
+        text = render(sub)
+        same = written.get(text)
         if same is not None:
             groups[same] += groups.pop(key)
             continue
-        written[render(sub)] = key
+        written[text] = key
         subs[key] = sub
     # Where the answer is already "true", the other groups need not exclude those values:
     # "A or (!A and B)" reads better as "A or B".

@@ -89,21 +89,6 @@ class SynthesisResult:
     explanation: Explanation | None = None
     details: dict[str, object] = field(default_factory=dict, repr=False)
 
-    def why(self, event: Event | str) -> Restriction | None:
-        """Why synthesis restricts ``event`` (None when it adds nothing to it). Computed on
-        request from the symbolic synthesis' BDDs."""
-        found = self.network.event(event) if isinstance(event, str) else event
-        fixpoint: Any = self.details.get("fixpoint")
-        if self.ok and found.controllable and fixpoint is None and "counted" in self.details:
-            from robosc.synthesis.fleet_why import counted_why
-
-            return counted_why(self, found)
-        if not self.ok or fixpoint is None or not found.controllable:
-            return None
-        from robosc.synthesis.why import why
-
-        return why(fixpoint, found)
-
     def guard(self, name: str) -> EventGuard:
         return next(g for g in self.guards if g.event.name == name)
 

@@ -14,6 +14,7 @@ from robosc.language.render import render
 from robosc.language.source import Span
 from robosc.plant.network import AutomatonKind, Event, Network, Requirement
 from robosc.synthesis.fixedpoints import reach
+from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Restriction, SynthesisResult
 from robosc.synthesis.symmetry import CountedSupervisor, at_least, robots_of
 
@@ -83,7 +84,7 @@ def never_allowed(result: SynthesisResult) -> list[Diagnostic]:
         span = event_span(guard.event)
         if span is None or span in places:
             continue
-        restriction = result.why(guard.event)
+        restriction = why_restricted(result, guard.event)
         if restriction is None or not restriction.never:
             continue
         places.add(span)

@@ -119,6 +119,7 @@ class ExpressionResolver:
             return m.Invalid(syntax.span)
         terms = []
         group = ""
+        key: tuple[object, ...] | None = None  # a quantifier's, to share what it resolves to
         if isinstance(syntax, s.Call):
             for arg in syntax.args:
                 terms.append(self.expr(arg, context))
@@ -127,7 +128,7 @@ class ExpressionResolver:
             # inside `for r in bot`, `any(q in bot: q.out1)` is the same for every r: resolved
             # once and shared, so that a fleet's requirements grow linearly with it, not squared
             key = self._shared_key(syntax, context)
-            shared = self.quantified.get(key) if key is not None else None
+            shared = self.quantified.get(key)
             if shared is not None:
                 return shared
             names = self.group(syntax.group, syntax.binder, f"'{kind}'")
@@ -149,13 +150,11 @@ class ExpressionResolver:
             made: m.Expr = m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
         else:
             made = simplify.join("and" if kind == "all" else "or", terms, syntax.span)
-        if isinstance(syntax, s.Quantifier):
-            key = self._shared_key(syntax, context)
-            if key is not None:
-                self.quantified[key] = made
+        if key is not None:
+            self.quantified[key] = made
         return made
 
-    def _shared_key(self, syntax: s.Quantifier, context: ExprContext) -> tuple[object, ...] | None:
+    def _shared_key(self, syntax: s.Quantifier, context: ExprContext) -> tuple[object, ...]:
         """What resolving ``syntax`` depends on: where it is, in which context, and the instances
         bound to the names its body uses (not the others: a `for` variable it does not name)."""
         known = self.names_in.get(id(syntax))

@@ -670,16 +670,22 @@ class Supervisor(object):
         name = perform(data) if data is not None else perform()
         if name is not None:
             now = time.time()
-            changes = self.changes
-            counting = bool(self.asking)
             for index, attribute in self.TRACKED:
-                new, old = getattr(self, attribute), before[index]
-                if new is not old:
+                if getattr(self, attribute) is not before[index]:
                     self.commanded[attribute] = now
-                    if counting and _moved(new, old):
-                        component = self.COMPONENT_OF[attribute]
-                        changes[component] = changes.get(component, 0) + 1
+            if self.asking:
+                self._count(before)
         return name
+
+    def _count(self, before: Any) -> None:
+        """Count, per component, an event that changed it (``before``: every field's value before
+        it): a driver's report asked for before may tell where it was before."""
+        changes = self.changes
+        for place, attribute in self.TRACKED:
+            new, old = getattr(self, attribute), before[place]
+            if new is not old and _moved(new, old):
+                component = self.COMPONENT_OF[attribute]
+                changes[component] = changes.get(component, 0) + 1
 
     def _permitted(self) -> Tuple[Callable[..., Optional[str]], ...]:
         """The controllable events allowed now, after data events, with what is held taken out."""
@@ -892,12 +898,7 @@ class Supervisor(object):
         if self.watching:
             index = self.INDEX
             if self.asking:
-                changes = self.changes
-                for place, attribute in self.TRACKED:
-                    new, old = getattr(self, attribute), saved[place]
-                    if new is not old and _moved(new, old):
-                        component = self.COMPONENT_OF[attribute]
-                        changes[component] = changes.get(component, 0) + 1
+                self._count(saved)
             if self.commanded:
                 for attribute in list(self.commanded):  # an answer came: no longer waiting for one
                     if getattr(self, attribute) is not saved[index[attribute]]:
