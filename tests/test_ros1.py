@@ -126,6 +126,7 @@ from std_srvs.srv import SetBool, SetBoolResponse
 start()
 state = State()
 calls, goals, cancelled = [], [], []
+FED = None  # a test that waits for the controller to get the feedback sets a threading.Event
 
 def light(request):
     calls.append(request.data)
@@ -146,7 +147,10 @@ def work(goal):
         cancelled.append(goal.goal)
         server.set_preempted()
         return
-    rospy.sleep(0.1)
+    if FED is not None:  # the result only once the controller has the feedback: actionlib's
+        FED.wait(10)  # feedback and result come on two topics, in either order under load
+    else:
+        rospy.sleep(0.1)
     server.set_succeeded(TestResult(result=42))
 
 server = actionlib.SimpleActionServer("/arm/work", TestAction, execute_cb=work, auto_start=False)
@@ -330,7 +334,8 @@ controller_arm.send_goal(TestGoal(goal=6))  # not the goal the model provides (7
 controller_arm.wait_for_result(rospy.Duration(5))
 report["other_goal"] = controller_arm.get_state()
 feedback = []
-controller_arm.send_goal(TestGoal(goal=7), feedback_cb=lambda f: feedback.append(f.feedback))
+FED = threading.Event()
+controller_arm.send_goal(TestGoal(goal=7), feedback_cb=lambda f: (feedback.append(f.feedback), FED.set()))
 controller_arm.wait_for_result(rospy.Duration(10))
 report["second_goal"] = controller_arm.get_state()
 report["result"] = controller_arm.get_result().result
