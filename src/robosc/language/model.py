@@ -234,11 +234,16 @@ class Count:
 Expr = Literal | EnumLiteral | StateRef | VariableRef | DataRef | Unary | Binary | Count | Invalid
 
 
-def walk(expr: Expr) -> Iterator[Expr]:
-    """``expr`` and every expression inside it."""
+def walk(expr: Expr, seen: set[int] | None = None) -> Iterator[Expr]:
+    """``expr`` and every expression inside it; with ``seen``, an operation (a part of several
+    expressions, shared) whose id is in it is skipped, and each one walked is added."""
     stack = [expr]
     while stack:
         node = stack.pop()
+        if seen is not None and isinstance(node, Binary | Unary | Count):
+            if id(node) in seen:
+                continue
+            seen.add(id(node))
         yield node
         if isinstance(node, Binary):
             stack += [node.right, node.left]
@@ -249,27 +254,13 @@ def walk(expr: Expr) -> Iterator[Expr]:
 
 
 def walk_all(exprs: Iterable[Expr]) -> Iterator[Expr]:
-    """Every expression inside each of ``exprs``, each object once: a part several of them
-    share (a quantifier inside a ``for`` block that does not read its variable, resolved once
-    for every instance) is walked once, so that a fleet costs linear time, not quadratic."""
+    """Every expression inside each of ``exprs`` (parts of one model, alive while it is), each
+    object once: a part several of them share (a quantifier inside a ``for`` block that does
+    not read its variable, resolved once for every instance) is walked once, so that a fleet
+    costs linear time, not quadratic."""
     seen: set[int] = set()
-    keep: list[Expr] = []  # (the ids stay theirs while they are seen)
     for root in exprs:
-        stack = [root]
-        while stack:
-            node = stack.pop()
-            if isinstance(node, (Binary, Unary, Count)):
-                if id(node) in seen:
-                    continue
-                seen.add(id(node))
-                keep.append(node)
-            yield node
-            if isinstance(node, Binary):
-                stack += [node.right, node.left]
-            elif isinstance(node, Unary):
-                stack.append(node.operand)
-            elif isinstance(node, Count):
-                stack += reversed(node.terms)
+        yield from walk(root, seen)
 
 
 # ---- communication ----------------------------------------------------------
