@@ -109,19 +109,21 @@ def _next_zone_free(i: int, n: int, zones: int, also: dict[int, str] | None = No
     return " and ".join(parts)
 
 
-def ring(n: int) -> str:
+def ring(n: int, homes: bool = False) -> str:
     """N robots on a one-way ring of 2N zones, written as today's language allows (a copied
     component per robot): robot i starts in zone 2i; `go{i}` (the controller's) starts a move
     into the next zone, `arrived{i}` (the robot's) ends it. A zone is held by the robot in it
     and by the one moving into it or out of it; a robot may start a move only into a zone no
-    other robot holds: a requirement per robot naming every other robot for every zone."""
+    other robot holds: a requirement per robot naming every other robot for every zone. With
+    ``homes``, a robot rests only in its start zone (its only marked state): see ring_homes."""
     zones = 2 * n
-    lines = ["robot Ring {"]
+    lines = ["robot Homes {" if homes else "robot Ring {"]
     for i in range(n):
         states = []
         for k in range(zones):
             initial = "initial " if k == 2 * i else ""
-            states.append(f"            {initial}marked state at{k} {{ on request to go{i} goto moving{k} }}")
+            marked = "marked " if k == 2 * i or not homes else ""
+            states.append(f"            {initial}{marked}state at{k} {{ on request to go{i} goto moving{k} }}")
             states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
         lines.append(
             f"    component R{i} {{\n"
@@ -356,25 +358,7 @@ def lift(n: int) -> str:
 def ring_homes(n: int) -> str:
     """:func:`ring`, but each robot must be able to get back to a home of its own, its start
     zone (the only marked state of its component): copies by hand that differ in one place."""
-    zones = 2 * n
-    lines = ["robot Homes {"]
-    for i in range(n):
-        states = []
-        for k in range(zones):
-            initial = "initial " if k == 2 * i else ""
-            marked = "marked " if k == 2 * i else ""
-            states.append(f"            {initial}{marked}state at{k} {{ on request to go{i} goto moving{k} }}")
-            states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
-        lines.append(
-            f"    component R{i} {{\n"
-            f"        incoming message go{i} with type: none\n"
-            f"        outgoing message arrived{i} with type: none\n"
-            "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
-        )
-    for i in range(n):
-        lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones)}")
-    lines.append("}")
-    return "\n".join(lines) + "\n"
+    return ring(n, homes=True)
 
 
 def crossing(n: int) -> str:
