@@ -103,9 +103,9 @@ def progress_line(progress: Progress) -> str:
 def synthesis_running(show: bool = True) -> Iterator[Callable[[Progress], None] | None]:
     """While synthesis runs: Ctrl-C (and SIGTERM, SIGHUP) ends the process at once (the BDD
     library holds Python's own handlers off until an operation ends, which can take many
-    seconds on a large fleet; synthesis writes nothing and starts no process), and, where standard error is a terminal and ``show``, a callback that
-    keeps one line there saying how far it is (cleared at the end; pipes and ``--json`` output
-    stay clean)."""
+    seconds on a large fleet; synthesis writes nothing and starts no process), and, where
+    standard error is a terminal and ``show``, a callback that keeps one line there saying how
+    far it is (cleared at the end; pipes and ``--json`` output stay clean)."""
     main = threading.current_thread() is threading.main_thread()
     ending = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
     before = [signal.signal(number, signal.SIG_DFL) for number in ending] if main else []

@@ -28,9 +28,9 @@ def synthesize_counted(
     symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not.
     ``watch``: told how far it is."""
     options = options or DEFAULT
+    watch = watch if watch is not None else Watch.quiet()
     start = time.perf_counter()
-    if watch is not None:
-        watch.phase("counting")
+    watch.phase("counting")
     try:
         fleet = counted(network, least)
     except NotSymmetric as reason:
@@ -67,8 +67,7 @@ def synthesize_counted(
             network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
         )
     translator = fleet.translator
-    if watch is not None:
-        watch.phase("conditions")
+    watch.phase("conditions")
     guards = []
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]

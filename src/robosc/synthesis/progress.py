@@ -7,6 +7,7 @@ synthesis result is the same whether anyone watches."""
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -51,6 +52,11 @@ class Watch:
         self.steps = 0
         self.nodes: Callable[[], int] = lambda: 0
 
+    @classmethod
+    def quiet(cls) -> Watch:
+        """A watch that tells no one (where synthesis is not watched)."""
+        return cls(lambda _: None, every=math.inf)
+
     def phase(self, name: str, round: int = 0) -> None:
         self.phase_name, self.round = name, round
         self.tell(time.monotonic())
@@ -58,9 +64,7 @@ class Watch:
     def step(self) -> None:
         """An image or preimage was computed."""
         self.steps += 1
-        now = time.monotonic()
-        if now >= self.next:
-            self.tell(now)
+        self.beat()
 
     def beat(self) -> None:
         """Some other piece of work was done (a relation built): reported if it is time."""

@@ -79,27 +79,23 @@ class Fixpoint:
 
 
 def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None) -> Fixpoint:
-    if watch is not None:
-        watch.phase("encoding")
+    watch = watch if watch is not None else Watch.quiet()
+    watch.phase("encoding")
     enc = Encoding(network, options)
-    if watch is not None:
-        watch.nodes = lambda: len(enc.bdd)
-        enc.watch = watch
+    watch.nodes = lambda: len(enc.bdd)
+    enc.watch = watch
     relation = {}
     for event in network.events:
         relation[event] = event_relation(enc, event)
-        if watch is not None:
-            watch.beat()
+        watch.beat()
     required = {e: enc.true for e in network.events}
     for requirement in network.requirements:
         required[requirement.event] &= enc.boolean(requirement.condition)
-        if watch is not None:
-            watch.beat()
+        watch.beat()
     enabled = {}
     for event, moves in relation.items():
         enabled[event] = enc.enabled(moves) & enc.valid()
-        if watch is not None:
-            watch.beat()
+        watch.beat()
     marked = enc.valid()
     for automaton in network.automata:
         here = enc.false
@@ -126,16 +122,14 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     rounds = 0
     while True:
         rounds += 1
-        if watch is not None:
-            watch.phase("bad states", rounds)
+        watch.phase("bad states", rounds)
         bad = closure(enc, bad, uncontrollable, explore)
         steps = [
             r.restrict(~enc.pre(relation[events[i]], bad)) if i in branching else r for i, r in enumerate(restricted)
         ]
         # nonblocking: who reaches a marked state through good states (chained, each event to
         # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
-        if watch is not None:
-            watch.phase("nonblocking", rounds)
+        watch.phase("nonblocking", rounds)
         good = within(enc, marked & ~bad, steps, enc.pre, ~bad, explore, each=True)
         new_bad = enc.valid() & ~good
         if new_bad == bad:
@@ -160,8 +154,7 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
             mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept & required[e]
             guards[e] = required[e] & ~into_bad if mixed != enc.false else required[e]
     reachable = enc.false
-    if watch is not None:
-        watch.phase("reachable")
+    watch.phase("reachable")
     if reaching:
         steps = [relation[e].restrict(guards[e]) if e.controllable else relation[e] for e in events]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
@@ -175,6 +168,7 @@ def synthesize_monolithic(
     BDD of the whole network's state (the reference method; ``options``: how to compute it,
     never what; ``watch``: told how far it is)."""
     start = time.perf_counter()
+    watch = watch if watch is not None else Watch.quiet()
     fp = fixpoint(network, options, watch)
     enc = fp.enc
     if (fp.initial & fp.bad) != enc.false:
@@ -188,8 +182,7 @@ def synthesize_monolithic(
             seconds=seconds,
             details={"fixpoint": fp, "effort": enc.effort()},
         )
-    if watch is not None:
-        watch.phase("conditions")
+    watch.phase("conditions")
     guards = []
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]

@@ -152,9 +152,10 @@ def _map(agent: Agent, rep: Agent) -> dict[Any, Any]:
     return found
 
 
-def groups(network: Network) -> list[Group]:
+def groups(network: Network, marking: bool = True) -> list[Group]:
     """The groups of two or more agents that are copies of each other (instances of one array,
-    or components copied by hand), and whose events no automaton outside the agent shares."""
+    or components copied by hand), and whose events no automaton outside the agent shares.
+    With ``marking`` False, copies but for which of their states are marked."""
     agents = _agents(network)
     owner_of_event: dict[Event, set[str]] = {}
     for automaton in network.automata:
@@ -167,7 +168,7 @@ def groups(network: Network) -> list[Group]:
             continue  # an event shared with something outside the agent
         # instances of two arrays (`component east[4]`, `component south[4]`) are two kinds of
         # robots, even where their automata are alike: the requirements say which is which
-        by_signature.setdefault((agent.component.group, _signature(agent)), []).append(agent)
+        by_signature.setdefault((agent.component.group, _signature(agent, marking)), []).append(agent)
     found = []
     for members in by_signature.values():
         if len(members) < 2:
@@ -550,9 +551,8 @@ class Translator:
                 if not holding:
                     continue
                 ref: m.Expr = m.VariableRef(counter, (), counter.type, NO_SPAN)
-                if any(
-                    boolean_constant(h) is not True for h in holding
-                ):  # how many hold depends on shared state or on me
+                # how many hold depends on shared state or on me
+                if any(boolean_constant(h) is not True for h in holding):
                     weight: m.Expr = m.Count(
                         "", tuple(holding), m.BasicType(m.BasicKind.INTEGER, 0, len(holding)), e.span
                     )
@@ -654,12 +654,9 @@ def counted(network: Network, least: int = 2) -> Counted:
     found = [group for group in groups(network) if len(group.agents) >= least]
     if not found:
         reason = NotSymmetric(f"no {least} components are copies of each other")
-        alike: dict[Any, list[Agent]] = {}
-        for agent in _agents(network):
-            alike.setdefault((agent.component.group, _signature(agent, marking=False)), []).append(agent)
-        homes = [agents for agents in alike.values() if len(agents) >= least]
+        homes = [group for group in groups(network, marking=False) if len(group.agents) >= least]
         if homes:  # copies but for where each may rest: a home of its own
-            names = [a.component.name for a in homes[0]]
+            names = [a.component.name for a in homes[0].agents]
             reason = NotSymmetric(
                 f"they differ in their marked states ({names[0]} .. {names[-1]}: each may rest in a place of its "
                 "own), and synthesis counts only robots whose marked states are the same"
