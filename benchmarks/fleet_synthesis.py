@@ -19,8 +19,10 @@ preimage computations) are printed next to the wall time and the peak memory. Wh
 finish, a third run asserts that they found the same supervisor (each event allowed in the
 same states, over the states the monolithic supervisor reaches): the last column.
 
-The largest condition synthesis added (as robosc prints it) and the size of the generated
-supervisor module are printed too (synthesis time includes neither).
+The largest condition synthesis added (as robosc prints it), the size of the generated
+supervisor module and how long the module takes to tell what is allowed where the fleet starts
+(``_allowed``, as a coordinator does after each event, median of 300) are printed too
+(synthesis time includes none of them).
 
 Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 2,4,8,16,32]
           [--methods counted,monolithic] [--timeout 600] [--memory-gb 2] [--baseline REV]
@@ -77,12 +79,25 @@ done = time.perf_counter()
 effort = result.details.get("effort") or {}
 from robosc.language.render import render
 condition = max((len(render(g.added)) for g in result.guards if g.added is not None), default=0)
-module = None
+module = allowed_us = None
 if result.ok:
-    from robosc.api import supervisor_module
+    import statistics
+    from robosc.api import plan_supervisor, supervisor_module
+    from robosc.runtime.simulator import load_module
     module = len(supervisor_module(result).encode())
+    Robot = load_module(plan_supervisor(result)).Robot
+    try:
+        robot = Robot(seed=0, wait_for_data=False, confirmed=True)
+    except TypeError:  # a revision before the belief was confirmed
+        robot = Robot(seed=0, wait_for_data=False)
+    times = []
+    for _ in range(300):  # what is allowed where the fleet starts, evaluated as the coordinator does
+        begin = time.perf_counter()
+        robot._allowed()
+        times.append(time.perf_counter() - begin)
+    allowed_us = statistics.median(times) * 1e6
 print(json.dumps({
-    "condition": condition, "module": module,
+    "condition": condition, "module": module, "allowed_us": allowed_us,
     "lines": len(text.splitlines()), "check": checked - start, "synthesis": done - checked,
     "states": result.reachable_states, "ok": result.ok, "added": len(result.added_guards),
     "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **effort,
@@ -154,9 +169,9 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
     print(f"limits: {args.timeout:g} s and {args.memory_gb:g} GB of address space per run\n")
     print(
         "| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages "
-        "| controlled states | largest added condition, chars | module, KB | same supervisor |"
+        "| controlled states | largest added condition, chars | module, KB | what is allowed, us | same supervisor |"
     )
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     methods = args.methods.split(",")
     for family in args.families.split(","):
         for n in sizes:
@@ -167,7 +182,7 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
             for label, method, source in runs:
                 f = measure(family, n, method, args.timeout, args.memory_gb, source)
                 if "failed" in f:
-                    print(f"| {family} | {n} | {label} | | | {f['failed']} | | | | | | | | |", flush=True)
+                    print(f"| {family} | {n} | {label} | | | {f['failed']} | | | | | | | | | |", flush=True)
                     continue
                 same = ""
                 finished += source is None  # the baseline's runs are not compared
@@ -179,7 +194,8 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
                     f"| {family} | {n} | {label} | {f['lines']} | {f['wall']:.2f} | {f['synthesis']:.2f} | "
                     f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
                     f"{f.get('preimages', '-')} | {f['states']:,} | {f['condition']:,} | "
-                    f"{'-' if f['module'] is None else format(f['module'] / 1024, ',.0f')} | {same} |",
+                    f"{'-' if f['module'] is None else format(f['module'] / 1024, ',.0f')} | "
+                    f"{'-' if f.get('allowed_us') is None else format(f['allowed_us'], ',.0f')} | {same} |",
                     flush=True,
                 )
 

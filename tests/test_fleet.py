@@ -592,10 +592,107 @@ def test_the_generated_module_writes_each_long_condition_once_and_decides_as_bef
     from robosc.synthesis.symbolic import synthesize_monolithic
 
     texts = {n: supervisor_module(synthesize_model(check_text(lift(n)).model)) for n in (5, 10)}
-    assert texts[5].count("sum((") == texts[10].count("sum((")  # each count once, however many robots
+    assert "sum((" not in texts[10] and "rt.tally(" in texts[10]  # each count a lookup in one tally
     assert len(texts[10]) < 2.1 * len(texts[5])  # (it was 2.5 times from 4 to 8 robots)
     assert "self._part0()" in texts[10] and "    def _part0(self):" in texts[10]
     network = build_network(check_text(lift(3)).model)
     counted = synthesize_counted(network)
     assert counted.method == "symmetric"
     assert module_agrees(counted, synthesize_monolithic(network), runs=2, steps=40)
+
+
+def _modules(text: str, monkeypatch: pytest.MonkeyPatch) -> tuple[Any, Any]:
+    """The fleet's generated module as robosc makes it (counts read from tallies) and, as the
+    reference, with every count written out as a sum over the robots."""
+    from robosc.runtime.plan import _Planner, plan
+    from robosc.runtime.simulator import load_module
+
+    result = synthesize_model(check_text(text).model)
+    tallied = load_module(plan(result))
+    with monkeypatch.context() as patch:
+        patch.setattr(_Planner, "guard_py", _Planner.py)
+        summed = load_module(plan(result))
+    return tallied, summed
+
+
+def _robot_reads(module: Any) -> tuple[Any, list[str]]:
+    """A supervisor of ``module`` that notes each read of a robot's field (``bot1``...)."""
+    reads: list[str] = []
+
+    class Counting(module.Robot):  # type: ignore[name-defined,misc]
+        def __getattribute__(self, name: str) -> Any:
+            if "_bot" in name and name[0] == "a":
+                reads.append(name)
+            return object.__getattribute__(self, name)
+
+    return Counting(seed=0, warn=lambda _: None, wait_for_data=False, confirmed=True), reads
+
+
+def test_a_count_over_the_fleet_is_read_from_one_tally_per_evaluation(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each robot's guard summed the counts over the whole fleet, so one evaluation of what is
+    allowed read every robot's location once per robot (quadratic: the lift's 16 robots, 2,048
+    reads); the fields are now tallied once per evaluation and a count is one lookup per value."""
+    reads = {}
+    for n in (4, 8):
+        tallied, summed = _modules(families.lift(n), monkeypatch)
+        for name, module in (("tallied", tallied), ("summed", summed)):
+            robot, seen = _robot_reads(module)
+            robot._allowed()
+            reads[name, n] = len(seen)
+    assert reads["tallied", 8] <= 2.2 * reads["tallied", 4]  # linear in the fleet: its own guards and one tally
+    assert reads["summed", 8] > 3 * reads["summed", 4]  # the reference: each count read per robot
+    assert reads["tallied", 8] < reads["summed", 8] / 2
+
+
+OTHERS = """robot Others {
+    component bot[5] initial a, a, b, c, a {
+        incoming message go with type: none
+        incoming message back with type: none
+        behaviour {
+            marked state a { on request to go goto b }
+            state b { on request to go goto c }
+            marked state c { on request to back goto a }
+        }
+    }
+    for r in bot {
+        requirement r.go needs !any(q in bot: q != r and q.b) and count(q in bot: q != r and q != bot2 and (q.b or q.c)) < 3
+        requirement r.back needs any(q in bot: q.a)
+    }
+}
+"""
+
+
+@pytest.mark.parametrize("fleet", ["lift", "others"])
+def test_counts_read_from_tallies_decide_as_counts_summed_in_every_state(
+    fleet: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every combination of where the robots (and the lift) are: the same events allowed; and
+    with one robot's place unconfirmed, the same events allowed wherever it may be. The
+    others: counts and quantifiers that leave the robot itself, and one singled out, out."""
+    import itertools
+
+    tallied, summed = _modules(families.lift(4) if fleet == "lift" else OTHERS, monkeypatch)
+    fields = [f for f in tallied.Robot.FIELDS if f[2] == "automata" and len(f[4]) > 1]
+    robots = [tallied.Robot(seed=0, warn=lambda _: None, wait_for_data=False) for _ in range(2)]
+    references = [summed.Robot(seed=0, warn=lambda _: None, wait_for_data=False) for _ in range(2)]
+    compared = 0
+    for values in itertools.product(*(f[4] for f in fields)):
+        for robot, reference in zip(robots, references, strict=True):
+            for (attribute, *_), value in zip(fields, values, strict=True):
+                setattr(robot, attribute, value)
+                setattr(reference, attribute, value)
+        mine = sorted(p.__name__ for p in robots[0]._allowed())
+        assert mine == sorted(p.__name__ for p in references[0]._allowed()), values
+        compared += 1
+        if compared % 17 == 0:  # a robot's place unconfirmed: allowed wherever it may be
+            bot = next(f for f in fields if "_bot2" in f[0])
+            for robot in (robots[1], references[1]):
+                robot._dirty = True
+                robot.unconfirm({bot[0]: bot[4]}, "a test")
+            assert sorted(p.__name__ for p in robots[1]._current()) == sorted(
+                p.__name__ for p in references[1]._current()
+            ), values
+            for robot in (robots[1], references[1]):
+                robot.reset(True)
+    assert compared >= 243
+    assert hasattr(tallied.Robot, "_T0") and not hasattr(summed.Robot, "_T0")  # the two ways were compared

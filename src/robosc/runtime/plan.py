@@ -180,6 +180,8 @@ class Plan:
     automata: tuple[tuple[str, str | None], ...]  # (network automaton name, field or None: one location), network order
     variables: tuple[tuple[str, str], ...]  # (Component.variable, field), synthesis variables, network order
     shared: tuple[tuple[str, str], ...] = ()  # (method, Python condition): long conditions written once
+    # (attribute, fields): the values of fields a count reads, tallied at each evaluation of _allowed
+    tallies: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
     @property
     def controllable(self) -> tuple[EventPlan, ...]:
@@ -297,13 +299,37 @@ class _Planner:
                 for v in behaviour.variables:
                     variables[v] = ids.new("v", component.name, v.name)
         self.names = Names(locations, variables, shared={})
+        # the supervisor's conditions (evaluated in _allowed only): counts read from tallies
+        self.guards = Names(
+            locations, variables, shared=self.names.shared, tallies={}, groups=self.group_fields(variables)
+        )
         self.checked = Names(locations, variables, checked=True)  # where received data is read
         self.kept = set(network.variables)
         self.conversions: dict[m.EnumType, Conversion] = {}
 
+    def group_fields(self, variables: dict[m.Variable, str]) -> dict[str, tuple[str, ...]]:
+        """Each field of a robot of a group -> the fields of the same role (its automaton, a
+        variable of the same name) of every robot of the group, in order."""
+        out: dict[str, tuple[str, ...]] = {}
+        for instances in self.model.groups.values():
+            rows = [
+                [f for a, f in self.automaton_field.items() if a.component is c and a.kind is AutomatonKind.COMPONENT]
+                + [variables[v] for b in c.behaviours for v in sorted(b.variables, key=lambda v: v.name)]
+                for c in instances
+            ]
+            if len(rows) < 2 or any(len(row) != len(rows[0]) for row in rows):
+                continue
+            for role in zip(*rows, strict=True):
+                out.update((f, role) for f in role)
+        return out
+
     # -- expressions -------------------------------------------------------------------------
     def py(self, expr: m.Expr | None) -> str:
         return "True" if expr is None else python(expr, self.names)
+
+    def guard_py(self, expr: m.Expr | None) -> str:
+        """A condition of the supervisor's, evaluated in ``_allowed`` (which makes the tallies)."""
+        return "True" if expr is None else python(expr, self.guards)
 
     def data_py(self, data: m.Expr | m.ObjectValue) -> str:
         if isinstance(data, m.ObjectValue):
@@ -497,7 +523,7 @@ class _Planner:
         supervisor = "True"
         if event.controllable:
             guard = self.result.guard(event.name)
-            supervisor = conjunction([self.py(guard.required), self.py(guard.added)])
+            supervisor = conjunction([self.guard_py(guard.required), self.guard_py(guard.added)])
         communication = convert = data = signature = None
         computed = False
         if event.communication is not None:
@@ -711,6 +737,7 @@ class _Planner:
             tuple((a.name, None if _constant(a) else self.automaton_field[a]) for a in self.network.automata),
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
             tuple((name, code) for code, name in (self.names.shared or {}).items()),
+            tuple((name, fields) for fields, name in (self.guards.tallies or {}).items()),
         )
 
 

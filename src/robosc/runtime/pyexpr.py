@@ -84,6 +84,13 @@ class Names:
     # expands to) is written once, as a method of the supervisor, and called where it is used:
     # its code -> the method's name (see :func:`python`); the module stays linear in the fleet
     shared: dict[str, str] | None = field(default=None, compare=False, repr=False)
+    # where set: a count of fields that each hold one of the same values (``count(q in bot:
+    # q.depot or q.lift)``) is read from a tally of those fields made once per evaluation of
+    # the supervisor's conditions (see :func:`tallied`): the fields -> the tally's attribute
+    tallies: dict[tuple[str, ...], str] | None = field(default=None, compare=False, repr=False)
+    # a field of one robot of a group -> the fields of the same role of every robot of the
+    # group, in order (the fields a tally counts)
+    groups: Mapping[str, tuple[str, ...]] | None = field(default=None, compare=False, repr=False)
 
 
 _READERS = {
@@ -147,6 +154,10 @@ def _python(expr: m.Expr, names: Names, owner: str) -> str:
         inner = _operand(expr.operand, names, owner)
         return f"not {inner}" if expr.op == "!" else f"-{inner}"
     if isinstance(expr, m.Binary):
+        if expr.op == "or" and names.tallies is not None and owner == "self":
+            found = tallied(expr, names)  # any(q in bot: q.corridor): whether the count is not 0
+            if found is not None:
+                return f"{_tally_count(found, owner)} > 0"
         left, right = _operand(expr.left, names, owner), _operand(expr.right, names, owner)
         if expr.op in ("and", "or"):
             return f"{left} {expr.op} {right}"
@@ -157,9 +168,103 @@ def _python(expr: m.Expr, names: Names, owner: str) -> str:
         if names.checked and numeric and expr.op in _ARITHMETIC and any(isinstance(n, m.DataRef) for n in m.walk(expr)):
             return f"num({text})"  # inf - inf: NaN is not a value
         return text
-    if isinstance(expr, m.Count):  # booleans add up as 0 and 1
+    if isinstance(expr, m.Count):
+        found = tallied(expr, names) if owner == "self" else None
+        if found is not None:  # one lookup per value, whatever the number of robots
+            return _tally_count(found, owner)
+        # booleans add up as 0 and 1
         return f"sum(({', '.join(_operand(t, names, owner) for t in expr.terms)},))"
     raise TypeError(f"cannot compile {type(expr).__name__}")
+
+
+MISSING_AT_MOST = 2  # fields of a group a tallied count may leave out (the robot itself, one singled out)
+TALLIED_FROM = 4  # robots in a group: in a smaller one, reading each field is quicker than a tally
+
+
+def tallied(expr: m.Count | m.Binary, names: Names) -> tuple[str, tuple[str, ...], tuple[str, ...]] | None:
+    """Where ``names.tallies`` is set and ``expr`` counts (a :class:`Count`), or asks whether
+    any (a disjunction), among the robots of a group, those whose field holds one of the same
+    values (a location, an enum value), each robot's field of the same role, all of the group's
+    but at most MISSING_AT_MOST: the tally's attribute, the values (sorted) and the fields
+    left out; the group's fields are added to ``names.tallies``. None for anything else."""
+    if names.tallies is None or names.groups is None:
+        return None
+    found: dict[str, frozenset[str]] = {}
+    place: dict[str, int] = {}  # a count's field -> its term's place (the robot's, in the group)
+    if isinstance(expr, m.Count):
+        for index, term in enumerate(expr.terms):
+            if isinstance(term, m.Literal) and term.value is False:
+                continue  # a robot left out (the robot itself, one singled out)
+            holds = _holds(term, names)
+            if holds is None or holds[0] in found:
+                return None
+            found[holds[0]] = holds[1]
+            place[holds[0]] = index
+    else:
+        for leaf in _disjuncts(expr):
+            holds = _holds(leaf, names)
+            if holds is None:
+                return None
+            found[holds[0]] = found.get(holds[0], frozenset()) | holds[1]
+    if len(found) < 2 or len(set(found.values())) != 1:
+        return None
+    group = names.groups.get(next(iter(found)))
+    if group is None or len(group) < TALLIED_FROM or any(names.groups.get(f) != group for f in found):
+        return None
+    if isinstance(expr, m.Count) and (len(expr.terms) != len(group) or any(group[i] != f for f, i in place.items())):
+        return None  # a count's terms not in the order of the group's robots
+    missing = tuple(f for f in group if f not in found)
+    if len(missing) > MISSING_AT_MOST:
+        return None
+    attribute = names.tallies.get(group)
+    if attribute is None:
+        attribute = names.tallies[group] = f"_t{len(names.tallies)}"
+    return attribute, tuple(sorted(next(iter(found.values())))), missing
+
+
+def _tally_count(found: tuple[str, tuple[str, ...], tuple[str, ...]], owner: str) -> str:
+    """The code of a tallied count (see :func:`tallied`): a lookup per value, less the fields
+    left out that hold one."""
+    attribute, values, missing = found
+    parts = [f"{owner}.{attribute}.get({v!r}, 0)" for v in values]
+    inside = repr(values[0]) if len(values) == 1 else repr(values)
+    test = "==" if len(values) == 1 else "in"
+    parts += [f"({owner}.{f} {test} {inside})" for f in missing]
+    text = " + ".join(parts[: len(values)])
+    if missing:
+        text += " - " + " - ".join(parts[len(values) :])
+    return text if len(parts) == 1 else f"({text})"
+
+
+def _disjuncts(expr: m.Expr) -> list[m.Expr]:
+    """The operands of a chain of ``or``, flattened."""
+    out, stack = [], [expr]
+    while stack:
+        e = stack.pop()
+        if isinstance(e, m.Binary) and e.op == "or":
+            stack += [e.right, e.left]
+        else:
+            out.append(e)
+    return out
+
+
+def _holds(term: m.Expr, names: Names) -> tuple[str, frozenset[str]] | None:
+    """(field, values) where ``term`` is true exactly when the field holds one of the values
+    (strings: locations, enum values); else None."""
+    if isinstance(term, m.StateRef):
+        field, location = names.locations[term.state]
+        return field, frozenset((location,))
+    if isinstance(term, m.Binary) and term.op == "=":
+        for ref, value in ((term.left, term.right), (term.right, term.left)):
+            if isinstance(ref, m.VariableRef) and not ref.steps and isinstance(value, m.EnumLiteral):
+                return names.variables[ref.variable], frozenset((value.value.name,))
+        return None
+    if isinstance(term, m.Binary) and term.op == "or":
+        left, right = _holds(term.left, names), _holds(term.right, names)
+        if left is None or right is None or left[0] != right[0]:
+            return None
+        return left[0], left[1] | right[1]
+    return None
 
 
 def _operand(expr: m.Expr, names: Names, owner: str) -> str:
