@@ -249,3 +249,22 @@ def test_jsonl_to_mcap_and_back_keeps_every_field(tmp_path: Path, big_log: Path)
     assert run("log", str(tmp_path / "x.mcap"), "-o", str(tmp_path / "back.jsonl")).returncode == 0
     back = [json.loads(line) for line in (tmp_path / "back.jsonl").read_text().splitlines()]
     assert back == original
+
+
+def test_the_robots_of_a_fleet_are_drawn_once_where_they_are_alike(tmp_path: Path) -> None:
+    """The lift fleet's 4 robots (and their communications' plants) drawn once, conditions
+    with r for the robot; a fleet whose first robot has a requirement of its own: each drawn."""
+    from families import lift
+    from robosc.debug.diagram import write_diagrams
+
+    written = {p.name for p in write_diagrams(synthesize_model(check_text(lift(4)).model), tmp_path / "lift")}
+    assert "bot.dot" in written and "plant_bot_go.svg" in written
+    assert not any(name.startswith(("bot1", "bot2", "plant_bot1")) for name in written)
+    text = (tmp_path / "lift" / "bot.dot").read_text()
+    assert "drawn once for bot1 .. bot4" in text
+    assert 'label="r.go\\nneeds: !any(q in bot: q.corridor or q.waiting or' in text
+    assert "bot1" not in text.replace("bot1 .. bot4", "")
+    apart = lift(4).replace("    for r in bot {", "    requirement bot1.go needs Lift.ground\n    for r in bot {", 1)
+    written = {p.name for p in write_diagrams(synthesize_model(check_text(apart).model), tmp_path / "apart")}
+    assert {"bot1.dot", "bot2.dot", "bot4.dot", "plant_bot1_go.dot", "plant_bot_call.dot"} <= written
+    assert "bot.dot" not in written and "plant_bot_go.dot" not in written

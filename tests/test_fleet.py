@@ -525,6 +525,11 @@ def test_two_arrays_of_alike_robots_are_two_kinds_counted_apart() -> None:
         ("count(bot1.busy, bot2.busy, bot3.busy) <= 1", "count(bot1.busy, bot2.busy, bot3.busy) <= 1"),  # written out
         ("count(q in bot: q.busy or bot1.idle) <= 1", "count(bot1.busy or bot1.idle, bot2.busy or bot1.idle, "
          "bot3.busy or bot1.idle) <= 1"),  # not the same of each: shown term by term
+        ("!any(q in bot: q.busy or q.idle) and Door.closed", "!any(q in bot: q.busy or q.idle) and Door.closed"),
+        ("all(q in bot: q.idle) or any(q in bot: q.busy)", "all(q in bot: q.idle) or any(q in bot: q.busy)"),
+        ("any(q in bot: q.busy and bot2.idle)", "(bot1.busy and bot2.idle) or (bot2.busy and bot2.idle) or "
+         "(bot3.busy and bot2.idle)"),  # not the same of each (bot2 reads itself twice): shown term by term
+        ("bot1.busy or bot2.busy or bot3.busy", "bot1.busy or bot2.busy or bot3.busy"),  # written out
     ],
 )
 def test_a_count_over_a_group_is_shown_as_written_over_the_group(written: str, shown: str) -> None:

@@ -9,6 +9,7 @@ view can switch styles on the SVG without laying it out again.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from robosc.codegen.templating import environment
@@ -51,6 +52,9 @@ class Diagram:
     kind: str  # "component", "message", "service", "action"
     locations: tuple[Location, ...]
     transitions: tuple[Transition, ...]
+    # a diagram drawn once for every robot of a group: for which ("bot1 .. bot16"), where the
+    # diagram's "r" stands for each of them; "" for one automaton
+    drawn_for: str = ""
 
     @property
     def file_stem(self) -> str:
@@ -165,6 +169,70 @@ def diagrams(result: SynthesisResult) -> list[Diagram]:
     return [_spread_loops(d) for d in out]
 
 
+def _strings(text: str, instance: str, to: str) -> str:
+    """``text`` with the instance's name (``bot3``, not ``bot30``, not inside a string) as ``to``."""
+    pattern = r'"(?:[^"\\]|\\.)*"|(?<![\w.])' + re.escape(instance) + r"(?!\w)"
+    return re.sub(pattern, lambda found: found.group(0) if found.group(0).startswith('"') else to, text)
+
+
+def _generic(d: Diagram, instance: str, group: str) -> Diagram:
+    """``d`` (drawn for ``instance`` of ``group``) for any robot of the group: its name and ids
+    with the group's name, its labels with ``r`` for the robot."""
+
+    def label(text: str | None) -> str | None:
+        return None if text is None else _strings(text, instance, "r")
+
+    def ident(text: str) -> str:
+        return _strings(text, instance, group)
+
+    return Diagram(
+        ident(d.name),
+        d.kind,
+        tuple(Location(ident(loc.id), loc.name, loc.initial, loc.marked) for loc in d.locations),
+        tuple(
+            Transition(
+                ident(t.id), t.source, t.target, label(t.event) or "", t.controllable, label(t.detail) or "",
+                label(t.required), label(t.added), t.port,
+            )
+            for t in d.transitions
+        ),
+    )
+
+
+def once_per_group(found: list[Diagram], model: m.Model) -> list[Diagram]:
+    """``found`` with the diagrams of a group's robots (their automata, their communications'
+    plants) drawn once for the group where they are all the same but for the robot's name (the
+    conditions over the group, written once; ``r`` for the robot), in the place of the first."""
+    groups = model.groups
+    owner = {c.name: c.group for instances in groups.values() for c in instances if c.group is not None}
+    generic: dict[int, tuple[str, Diagram]] = {}
+    members: dict[tuple[str, str], list[int]] = {}
+    for index, d in enumerate(found):
+        instance = d.name if d.kind == "component" else d.name.split(".")[0]
+        group = owner.get(instance)
+        if group is None:
+            continue
+        g = _generic(d, instance, group)
+        generic[index] = (instance, g)
+        members.setdefault((group, g.name), []).append(index)
+    out: list[Diagram] = []
+    done: set[int] = set()
+    for index, d in enumerate(found):
+        if index in done:
+            continue
+        if index in generic:
+            instance, g = generic[index]
+            group = owner[instance]
+            same = members[group, g.name]
+            if len(same) == len(groups[group]) >= 2 and all(generic[i][1] == g for i in same):
+                done.update(same)
+                first, last = generic[same[0]][0], generic[same[-1]][0]
+                out.append(Diagram(g.name, g.kind, g.locations, g.transitions, f"drawn once for {first} .. {last}"))
+                continue
+        out.append(d)
+    return out
+
+
 def dot(diagram: Diagram, title: bool = True) -> str:
     return environment("robosc.debug").get_template("automaton.dot.j2").render(d=diagram, title=title)
 
@@ -175,11 +243,12 @@ def svg(diagram: Diagram, title: bool = True) -> str:
 
 
 def write_diagrams(result: SynthesisResult, output: str | Path) -> list[Path]:
-    """DOT and SVG files of every diagram under ``output``; returns the paths written.
+    """DOT and SVG files of every diagram under ``output``, those of a group's robots drawn once
+    where they are alike (:func:`once_per_group`); returns the paths written.
     Every diagram is laid out before the first file is written, so a failure (raised as
     :class:`LayoutError`) leaves no partial output."""
     contents: list[tuple[str, str, str]] = []
-    for d in diagrams(result):
+    for d in once_per_group(diagrams(result), result.network.model):
         text = dot(d)
         contents.append((d.file_stem, text, to_svg(text)))
     out = Path(output)

@@ -210,6 +210,9 @@ class Binary:
     right: Expr
     type: DataType
     span: Span = field(repr=False)
+    # an ``any`` / ``all`` over a whole array (group, its size), as the resolver joined its
+    # terms (one per instance, in order: see simplify.join); only shown so, never read
+    over: tuple[str, int] | None = field(default=None, compare=False, repr=False)
 
 
 @record(eq=False)

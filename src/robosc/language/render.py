@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 
 from robosc.language import model as m
+from robosc.language import simplify
 from robosc.language.keywords import escape_name
 
 # LANGUAGE.md section 2, loosest first.
@@ -26,7 +27,9 @@ def _level(e: m.Expr) -> int:
 
 
 def _child(e: m.Expr, parent: str, right: bool) -> str:
-    text = render(e)
+    text, call = _shown(e)
+    if call:  # any(q in bot: ...) reads as one operand
+        return text
     level, parent_level = _level(e), LEVEL[parent]
     needs = level < parent_level or (
         right and level == parent_level and not (isinstance(e, m.Binary) and e.op == parent and parent in ASSOCIATIVE)
@@ -57,12 +60,22 @@ def literal(value: object) -> str:
     return str(value)
 
 
+def _shown(e: m.Expr) -> tuple[str, bool]:
+    """``e`` as text, and whether that is an ``any`` / ``all`` over a group (read as a call)."""
+    if isinstance(e, m.Binary) and e.over is not None:
+        over = _over_group(e)
+        if over is not None:
+            return over, True
+    return render(e), False
+
+
 def render(e: m.Expr) -> str:
     if isinstance(e, m.Binary):
-        return f"{_child(e.left, e.op, False)} {e.op} {_child(e.right, e.op, True)}"
+        over = _over_group(e) if e.over is not None else None
+        return over or f"{_child(e.left, e.op, False)} {e.op} {_child(e.right, e.op, True)}"
     if isinstance(e, m.Unary):
-        inner = render(e.operand)
-        return f"{e.op}({inner})" if _level(e.operand) < UNARY_LEVEL[e.op] else f"{e.op}{inner}"
+        inner, call = _shown(e.operand)
+        return f"{e.op}({inner})" if _level(e.operand) < UNARY_LEVEL[e.op] and not call else f"{e.op}{inner}"
     if isinstance(e, m.Literal):
         return literal(e.value)
     if isinstance(e, m.EnumLiteral):
@@ -78,23 +91,47 @@ def render(e: m.Expr) -> str:
     return "<invalid>"
 
 
+def _over_group(e: m.Binary) -> str | None:
+    """An ``any`` / ``all`` the resolver joined over a whole array, as it is written,
+    ``any(q in bot: ...)``, where its terms are still the same condition of each instance."""
+    assert e.over is not None
+    group, size = e.over
+    terms = simplify.chain(e, size)
+    if not terms:
+        return None
+    body = _template(group, terms)
+    if body is None:
+        return None
+    binder, template = body
+    return f"{'any' if e.op == 'or' else 'all'}({binder} in {escape_name(group)}: {template})"
+
+
 def _quantified(e: m.Count) -> str | None:
     """``e`` as it is written over an array, ``count(q in bot: ...)``, where it counts the same
     condition of each instance ``bot1``, ``bot2``, ... in order (a count written out, or of
     conditions that differ, is None: its terms are shown)."""
     if not e.group or len(e.terms) < 2:
         return None
-    texts = [render(term) for term in e.terms]
+    body = _template(e.group, e.terms)
+    if body is None:
+        return None
+    return f"count({body[0]} in {escape_name(e.group)}: {body[1]})"
+
+
+def _template(group: str, terms: tuple[m.Expr, ...]) -> tuple[str, str] | None:
+    """(binder, the condition each of ``terms`` is of its instance ``group1``, ``group2``, ...
+    in order, written with the binder), or None where they are not one condition."""
+    texts = [render(term) for term in terms]
     binder = next((n for n in ("q", "p", "r", "s") if not any(re.search(rf"(?<![\w.]){n}\.", t) for t in texts)), None)
     if binder is None:
         return None
     template = None
     for index, text in enumerate(texts, 1):
-        me = re.compile(r"(?<![\w.])" + re.escape(escape_name(f"{e.group}{index}")) + r"(?=\.)")
+        me = re.compile(r"(?<![\w.])" + re.escape(escape_name(f"{group}{index}")) + r"(?=\.)")
         if not me.search(text):
             return None
         body = me.sub(binder, text)
         if template is not None and body != template:
             return None
         template = body
-    return f"count({binder} in {escape_name(e.group)}: {template})"
+    return None if template is None else (binder, template)

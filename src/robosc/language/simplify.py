@@ -80,6 +80,18 @@ def join(op: str, terms: Sequence[m.Expr], span: Span) -> m.Expr:
     return build(kept)
 
 
+def chain(e: m.Expr, n: int, op: str | None = None) -> tuple[m.Expr, ...]:
+    """The ``n`` terms :func:`join` made ``e`` of with ``op`` (``e``'s own where None), split
+    where it splits; () where ``e`` is not such a tree of ``n`` terms."""
+    if n == 1:
+        return (e,)
+    if not isinstance(e, m.Binary) or e.op not in ("and", "or") or (op is not None and e.op != op):
+        return ()
+    middle = n // 2
+    left, right = chain(e.left, middle, e.op), chain(e.right, n - middle, e.op)
+    return left + right if left and right else ()
+
+
 def replace(e: m.Expr, leaf: Callable[[m.Expr], m.Expr | None]) -> m.Expr:
     """``e`` with each node that ``leaf`` answers (not None) replaced by its answer, the
     operators around them rebuilt."""

@@ -150,6 +150,9 @@ class ExpressionResolver:
             made: m.Expr = m.Count(group, tuple(terms), m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), syntax.span)
         else:
             made = simplify.join("and" if kind == "all" else "or", terms, syntax.span)
+            if group and len(terms) >= 2 and isinstance(made, m.Binary) and len(simplify.chain(made, len(terms))) == len(terms):
+                # every term kept: shown as written, any(q in bot: ...) (render checks the terms)
+                made = m.Binary(made.op, made.left, made.right, made.type, made.span, over=(group, len(terms)))
         if key is not None:
             self.quantified[key] = made
         return made
