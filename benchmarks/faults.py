@@ -473,9 +473,9 @@ def main() -> None:
         results: dict[str, dict[str, list[Any]]] = {}
         for revision in runs:
             label = "this" if revision is None else revision
-            warehouse = generate("examples/warehouse.rscd", work / f"wh_{label}", revision, work)
+            warehouse = generate("docs/models/warehouse_zero_time.rscd", work / f"wh_{label}", revision, work)
             line = generate("examples/line_follower.rscd", work / f"lf_{label}", revision, work)
-            warehouse1 = revisions.generate(ROOT / "examples/warehouse.rscd", 1, work / f"wh1_{label}", revision, work)
+            warehouse1 = revisions.generate(ROOT / "docs/models/warehouse_zero_time.rscd", 1, work / f"wh1_{label}", revision, work)
             for run in range(args.runs):
                 tag = f"{label}{run}"
                 scenarios: list[tuple[str, Any, tuple[Any, ...]]] = [

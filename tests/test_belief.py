@@ -24,7 +24,7 @@ from test_onboard import FakeNode, Float32
 ROOT = Path(__file__).resolve().parent.parent
 CLEAR = Data({"ranges": [5.0] * 360})
 MOVE = 0.15
-WAREHOUSE = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "examples/warehouse.rscd")))).Robot
+WAREHOUSE = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "docs/models/warehouse_zero_time.rscd")))).Robot
 LOCATIONS = ("depot", "out1", "out2", "out3", "shelf", "back3", "back2", "back1", "charging")
 DOOR = ("closed", "opening", "open", "closing")
 
@@ -136,7 +136,7 @@ def test_a_report_outside_what_the_component_may_be_is_refused() -> None:
 
 
 def test_the_warehouse_commands_nothing_until_every_robot_it_reads_is_confirmed() -> None:
-    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, report_interval=0.01)
+    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, report_interval=0.01)
     node.cycle()
     assert node.published == [] and sorted(node.asked_for) == ["Door", "bot1", "bot2", "bot3"]
     node.answers.update(Door="open", bot1="out1", bot2="depot")
@@ -162,7 +162,7 @@ def test_no_state_is_written_to_disk(tmp_path: Path, monkeypatch: pytest.MonkeyP
 
 # ---- commands on their way -------------------------------------------------------------------------
 def warehouse(**params: Any) -> Node:
-    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, trust_initial_state=True, **params)
+    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, trust_initial_state=True, **params)
     node.acknowledges = True
     return node
 
@@ -428,7 +428,7 @@ def test_a_report_asked_for_before_a_command_went_out_is_not_taken() -> None:
     """Asked twice (the first answer slow), bot1's driver answers depot twice; between the answers
     the first confirms bot1 and dock goes out. The second may tell where bot1 was before dock
     arrived: not taken (dock in flight, or sent since it was asked); asked again."""
-    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, report_interval=0.01, ack_timeout=5.0)
+    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, report_interval=0.01, ack_timeout=5.0)
     node.acknowledges = True
     node.housekeeping()
     time.sleep(0.02)
@@ -459,7 +459,7 @@ def test_a_report_asked_for_before_an_answer_moved_its_component_is_not_taken() 
     """The door's driver is asked; door_opened comes (the door may be open, or closed or closing
     if it was spurious); then the driver's answer, closed, given before door_opened was sent:
     not taken, asked again. The answer to the second request is taken."""
-    node = Node("examples/warehouse.rscd", rate=40.0, seed=3, report_interval=0.01)
+    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, report_interval=0.01)
     node.housekeeping()
     assert "Door" in node.asked_for
     node.receive(node.inputs["door_opened"], None)

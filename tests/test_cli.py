@@ -222,12 +222,12 @@ def test_a_counted_fleet_is_explained_once_for_its_robots_and_in_json() -> None:
     data = json.loads(run("synthesize", "--json", warehouse).stdout)
     why = {e["event"]: e["why"] for e in data["events"] if e["why"] is not None}
     assert sorted(why) == ["bot1.go", "bot2.go", "bot3.go"]
-    assert all(w["note"].startswith("the same for every robot of bot") and len(w["path"]) == 4 for w in why.values())
+    assert all(w["note"].startswith("the same for every robot of bot") and len(w["path"]) == 6 for w in why.values())
 
 
 def test_explicit_synthesis_compares_a_counted_fleet_orbit_by_orbit_and_says_they_agree() -> None:
     """Before: 'they DISAGREE' on every counted fleet (241 explicit states against 58 counted)."""
-    done = run_in(None, "synthesize", "--explicit", str(EXAMPLES / "warehouse.rscd"))
+    done = run_in(None, "synthesize", "--explicit", str(EXAMPLES.parent / "docs/models/warehouse_zero_time.rscd"))
     assert done.returncode == 0, done.stderr
     assert "controlled system: 241 reachable states" in done.stdout
     assert "symmetric synthesis: 58 reachable states counted" in done.stdout

@@ -34,7 +34,7 @@ from warehouse_drivers import (
 )
 from warehouse_world import ROBOTS, Ros2Wire, World, follow, forbidden, take_driver
 
-MODEL = "examples/warehouse.rscd"
+MODEL = "docs/models/warehouse_zero_time.rscd"
 PARAMS = {"rate": 40.0, "seed": 3}
 
 

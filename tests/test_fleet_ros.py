@@ -19,7 +19,7 @@ from typing import Any
 from ros_support import Ros1, Ros2, initial_states, unavailable
 from test_build import COLCON, in_workspace, run
 
-MODEL = "examples/warehouse.rscd"
+MODEL = "docs/models/warehouse_zero_time.rscd"
 ROBOTS = ("bot1", "bot2", "bot3")
 TASK = ("depot", "out1", "out2", "out3", "shelf", "back3", "back2", "back1")
 CELLS = ({"out1", "back1"}, {"out2", "back2"}, {"out3", "back3"}, {"shelf"})
