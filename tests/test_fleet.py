@@ -728,3 +728,27 @@ def test_the_fleet_how_to_shows_the_zero_time_warehouse_unsafe_and_the_bundled_o
     zero, timed = printed.splitlines()
     assert "bot2.go" in zero and "close_door" in zero
     assert "bot2.go" not in timed and "close_door" not in timed and "bot1.go" not in timed
+
+
+@pytest.mark.parametrize("ros", [1, 2])
+def test_the_coordinator_readme_says_what_each_driver_provides(ros: int, tmp_path: Path) -> None:
+    """The generated package's README lists, per robot, every topic and service the driver must
+    provide with its type and QoS, and which answers the model expects after each command."""
+    from robosc.api import load_model, plan_supervisor
+    from robosc.codegen.ros import generate
+
+    root = Path(__file__).resolve().parent.parent
+    generate(plan_supervisor(synthesize_model(load_model(root / "examples/warehouse.rscd"))), ros, "controller", tmp_path)
+    text = (tmp_path / "README.md").read_text()
+    empty, trigger = ("std_msgs/Empty", "std_srvs/Trigger") if ros == 1 else ("std_msgs/msg/Empty", "std_srvs/srv/Trigger")
+    qos = "TCPROS, queue_size 10" if ros == 1 else "reliable, volatile, keep last 10"
+    assert (
+        f"| `bot2/go` | `{empty}` | node -> driver | {qos} | subscribe; each message is one command; after it, "
+        "publish `bot2/arrived` or `bot2/stopped`, once, when that happens |" in text
+    )
+    assert f"| `bot3/charged` | `{empty}` | driver -> node | {qos} | publish it once each time it happens" in text
+    assert f"| `robosc/report/Door` | `{trigger}` | node -> driver | service | answer `success: true`" in text
+    assert "one of `closed`, `opening`, `open`, `closing`" in text
+    for name in ("open_door", "close_door", "door_opened", "door_closed", *(f"bot{i}/{c}" for i in (1, 2, 3)
+                 for c in ("go", "dock", "arrived", "stopped", "charged"))):
+        assert f"| `{name}` |" in text, name

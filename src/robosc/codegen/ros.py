@@ -18,7 +18,7 @@ from robosc.language.source import Span
 from robosc.record import record
 from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
 from robosc.runtime.onboard import VERSION
-from robosc.runtime.onboard.messages import wire_type
+from robosc.runtime.onboard.messages import SENSOR_PACKAGE, wire_type
 from robosc.runtime.onboard.node import PARAMETERS, controller_side
 from robosc.runtime.onboard.supervisor import Communication as OnBoard
 from robosc.runtime.plan import Communication, Plan
@@ -49,6 +49,89 @@ class RosPlan:
     remaps: tuple[tuple[str, str], ...]  # supervision layer: (robot side, controller side)
     relative: bool  # the model's absolute names made relative to the node's namespace
     parameters: tuple[tuple[str, str, str], ...]  # (name, default as text, type) for launch files
+
+
+@record
+class Duty:
+    """One line of the generated README's table of what a driver provides: a topic, service or
+    action of the node's, as the driver meets it."""
+
+    name: str  # as the node uses it (relative to its namespace where it is relative)
+    type: str  # the ROS type, as `ros2 interface show` / `rosmsg show` name it
+    way: str  # "node -> driver" or "driver -> node"
+    qos: str
+    does: str  # what the driver does with it
+
+
+@record
+class DriverDuties:
+    component: str
+    duties: tuple[Duty, ...]
+
+
+def _cell(text: str) -> str:
+    """Text from the model inside a Markdown table's code span: one line, no backtick, no bar."""
+    return "".join("'" if c == "`" else "?" if c < " " else "\\|" if c == "|" else c for c in text)
+
+
+def _type(ros: int, package: str, kind: str, name: str) -> str:
+    return f"{package}/{name}" if ros == 1 else f"{package}/{kind}/{name}"
+
+
+def driver_duties(rp: RosPlan) -> tuple[DriverDuties, ...]:
+    """What each component's driver must provide for the node (the generated README's tables):
+    every topic, service and action with its type, its QoS and who answers what."""
+    depth = next(p.default for p in PARAMETERS if p.name == "qos_depth")
+    reliable = f"reliable, volatile, keep last {depth}" if rp.ros == 2 else f"TCPROS, queue_size {depth}"
+    out = []
+    for driver in rp.plan.drivers:
+        answers = dict(driver.answers)
+        names = {c.name: _cell(ros_name(c, rp.relative)) for c in rp.plan.communications}
+        duties = []
+        for c in rp.plan.communications:
+            if c.component != driver.component:
+                continue
+            name = names[c.name]
+            if c.kind in ("incoming", "outgoing"):
+                package, type_name = wire_type(OnBoard(c.name, c.kind, name, c.interface, c.data_kind))
+                ros_type = _type(rp.ros, package, "msg", type_name)
+                if c.kind == "incoming":
+                    replies = [f"`{names[r]}`" for r in answers.get(c.name, ())]
+                    does = "subscribe; each message is one command"
+                    if replies:
+                        does += f"; after it, publish {' or '.join(replies)}, once, when that happens"
+                    duties.append(Duty(name, ros_type, "node -> driver", reliable, does))
+                else:
+                    best_effort = rp.ros == 2 and package == SENSOR_PACKAGE
+                    qos = f"best effort, volatile, keep last {depth}" if best_effort else reliable
+                    if any(c.name in replies for replies in answers.values()):
+                        does = "publish it once each time it happens, never again for the same"
+                    elif c.data_kind != "none":
+                        does = "publish as it has new data"
+                    else:
+                        does = "publish it each time it happens"
+                    duties.append(Duty(name, ros_type, "driver -> node", qos, does))
+                continue
+            assert c.package is not None and c.ros_type is not None
+            kind = "srv" if c.kind == "service" else "action"
+            does = "serve it; the response is the answer" if c.kind == "service" else (
+                "serve it: accept or reject each goal, send feedback, finish with a result"
+            )
+            duties.append(Duty(name, _type(rp.ros, c.package, kind, c.ros_type), "node -> driver", c.kind, does))
+        locations = ", ".join(f"`{_cell(location)}`" for location in driver.locations)
+        duties.append(
+            Duty(
+                _cell(f"robosc/report/{driver.component}"),
+                _type(rp.ros, "std_srvs", "srv", "Trigger"),
+                "node -> driver",
+                "service",
+                f"answer `success: true` and, as `message`, where it is now: one of {locations}",
+            )
+        )
+        once = {(d.name, d.way): d for d in reversed(duties)}  # a topic several communications share: once
+        kept = [d for d in duties if once[d.name, d.way] is d]
+        out.append(DriverDuties(_cell(driver.component), tuple(kept)))
+    return tuple(out)
 
 
 def package_name(plan: Plan) -> str:
@@ -143,7 +226,9 @@ def generate(
     are made relative, so that a namespace moves the whole robot."""
     rp = ros_plan(plan, ros, mode, relative)
     env = environment()
-    context = {"rp": rp, "plan": plan, "source_name": source_name(plan), "version": VERSION}
+    context = {
+        "rp": rp, "plan": plan, "source_name": source_name(plan), "version": VERSION, "drivers": driver_duties(rp)
+    }
     python = f"src/{rp.package}" if ros == 1 else rp.package  # where the Python package goes
     files: dict[str, str] = {
         f"{python}/__init__.py": "",
@@ -177,4 +262,4 @@ def generate(
     return written
 
 
-__all__ = ["RosError", "RosPlan", "generate", "package_name", "ros_name", "ros_plan"]
+__all__ = ["DriverDuties", "Duty", "RosError", "RosPlan", "driver_duties", "generate", "package_name", "ros_name", "ros_plan"]

@@ -76,6 +76,18 @@ class Communication:
 
 
 @record
+class Driver:
+    """What a component's driver does for the node, as the model says it (for the generated
+    README): the locations its report names, and after each command (an incoming message), the
+    messages the model expects the driver to send back (the uncontrollable events that leave
+    the locations the command leads to)."""
+
+    component: str
+    locations: tuple[str, ...]
+    answers: tuple[tuple[str, tuple[str, ...]], ...]  # (command's communication, the answers' communications)
+
+
+@record
 class EventPlan:
     name: str
     method: str
@@ -182,6 +194,7 @@ class Plan:
     shared: tuple[tuple[str, str], ...] = ()  # (method, Python condition): long conditions written once
     # (attribute, fields): the values of fields a count reads, tallied at each evaluation of _allowed
     tallies: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    drivers: tuple[Driver, ...] = ()  # per component automaton, in network order
 
     @property
     def controllable(self) -> tuple[EventPlan, ...]:
@@ -714,6 +727,33 @@ class _Planner:
                     found |= self.reach.get(node.variable, frozenset())
         return tuple(sorted(found))
 
+    def drivers(self) -> tuple[Driver, ...]:
+        """Each component's :class:`Driver`: what its report names, and what answers each command."""
+        out = []
+        for automaton in self.network.automata:
+            if automaton.kind is not AutomatonKind.COMPONENT or automaton.component is None:
+                continue
+            answers: dict[str, list[str]] = {}
+            for edge in automaton.edges:
+                event, c = edge.event, edge.event.communication
+                if not event.controllable or event.kind is not K.MESSAGE or c is None:
+                    continue
+                found = answers.setdefault(c.name, [])
+                for after in automaton.edges:
+                    reply = after.event.communication
+                    leaves = after.source is edge.target and after.target is not edge.target
+                    answer = not after.event.controllable and after.event.kind is K.MESSAGE
+                    if leaves and answer and reply is not None and reply.name not in found:
+                        found.append(reply.name)
+            out.append(
+                Driver(
+                    automaton.component.name,
+                    tuple(location.name for location in automaton.locations),
+                    tuple((command, tuple(replies)) for command, replies in answers.items()),
+                )
+            )
+        return tuple(out)
+
     def build(self) -> Plan:
         self.reach = self.data_reach()
         self.communications = {
@@ -738,6 +778,7 @@ class _Planner:
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
             tuple((name, code) for code, name in (self.names.shared or {}).items()),
             tuple((name, fields) for fields, name in (self.guards.tallies or {}).items()),
+            self.drivers(),
         )
 
 

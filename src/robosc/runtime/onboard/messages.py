@@ -21,6 +21,7 @@ from typing import Any, Dict
 from .supervisor import ANY
 from .values import fields_of, finite
 
+SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers (ROS 2)
 STD_MSGS = {"string": "String", "boolean": "Bool", "integer": "Int16", "double": "Float32", "none": "Empty"}
 FLOAT32_MAX = 3.4028234663852886e38
 INTEGER_RANGES = {

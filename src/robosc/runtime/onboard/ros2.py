@@ -38,7 +38,7 @@ from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPo
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
-from .messages import MissingType, load
+from .messages import SENSOR_PACKAGE, MissingType, load
 from .node import (
     BLOCKED_TOPIC,
     HEALTH_TOPIC,
@@ -55,7 +55,6 @@ from .node import (
 )
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
-SENSOR_PACKAGE = "sensor_msgs"  # its topics come best effort from most drivers
 POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
 PROFILE = "fastdds.xml"  # next to this module: the writers' heartbeat, for prompt acknowledgements
 
