@@ -333,3 +333,53 @@ def test_robots_in_the_animation_are_told_apart_by_colour_and_name(tmp_path: Pat
         assert len({b.radius for b in bodies}) == 3  # the later ones smaller: all three show
     finally:
         plt.close(fig)
+
+
+LANE = """\
+world: lane
+size: [6, 2]
+shared: true
+robot: {radius: 0.2, max_linear: 0.3, command_timeout: 0.3}
+starts:
+  - [1.0, 1.0, 0]
+  - [3.0, 1.0, 180]
+goal: {x: [5, 6], y: [0, 2]}
+"""
+
+
+@pytest.mark.parametrize("shared", [True, False])
+def test_in_a_shared_world_robots_see_and_touch_each_other(tmp_path: Path, shared: bool) -> None:
+    """Two robots 2 m apart, face to face, driving at each other: in a shared world (one IR-SIM
+    environment) each LiDAR sees the other 1.8 m ahead (its near edge) and they collide, the run
+    fails naming both; in a world that is not shared they are ghosts to each other."""
+    sim = Simulation(world(tmp_path, LANE.replace("shared: true", f"shared: {str(shared).lower()}")), robots=2)
+    scans = [m for m in sim.step() if m.role == "scan"]
+    ahead = [scan.value[0] for scan in scans]
+    if shared:
+        assert ahead == [pytest.approx(1.8, abs=0.02), pytest.approx(1.8, abs=0.02)]
+    else:
+        assert ahead == [math.inf, math.inf]
+    verdict = None
+    for _ in range(200):
+        sim.command_velocity(0, 0.3, 0.0)
+        sim.command_velocity(1, 0.3, 0.0)
+        sim.step()
+        verdict = sim.verdict(1000.0)
+        if verdict is not None:
+            break
+    if shared:
+        assert verdict is not None and verdict[0] is False
+        assert verdict[1].startswith("robot1 touched robot2; robot2 touched robot1 at t = ")
+        assert [s.touched for s in sim.status] == ["robot2", "robot1"]
+        assert all(s.closest_robot <= 1e-3 for s in sim.status)
+    else:
+        assert verdict is None or verdict[0] is not False or "touched" not in verdict[1]
+        assert [s.collided_at for s in sim.status] == [None, None]
+
+
+def test_a_shared_world_needs_a_start_for_each_robot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    lane = world(tmp_path, LANE)
+    with pytest.raises(ValueError, match=r"each needs a start of its own: it has 2, and 3 robots were asked for"):
+        Simulation(lane, robots=3)
+    code = main(["sim", str(tmp_path / "world.yaml"), str(ROOT / "examples/maze_solver.rscd"), "--robots", "3"])
+    assert code == 2 and "it has 2, and 3 robots were asked for" in capsys.readouterr().err

@@ -76,6 +76,9 @@ def test_emergency_stop_schedule_and_topics(tmp_path: Path) -> None:
         (MINIMAL + "walls: &w [[[0, 0], [1, 1]]]\nboxes: *w\n", 7, 8, "YAML aliases (*name) are not supported"),
         ("", 1, 1, "the world file is empty"),
         ("- 1\n", 1, 1, "the world must be a mapping"),
+        (MINIMAL + "shared: maybe\n", 6, 9, "shared must be true or false"),
+        (MINIMAL.replace("  - [1, 1, 90]", "  - [1, 1, 90]\n  - [1.1, 1, 0]") + "shared: true\n", 5, 5,
+         "start 2 touches start 1: in a shared world robots are bodies"),
     ],
 )
 def test_errors_name_file_line_and_column(tmp_path: Path, text: str, line: int, column: int, message: str) -> None:

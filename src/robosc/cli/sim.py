@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import math
 import os
 import shutil
 import tempfile
@@ -86,6 +87,9 @@ def sim(
         world = load_world(world_file)
     except WorldError as exc:
         raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
+    crowded = world.room_for(robots)
+    if crowded is not None:
+        raise input_problem(crowded)
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     result, plan = supervised(model, include, "a simulation")
@@ -159,7 +163,10 @@ def _check_middleware(ros: int) -> None:
 def _print(report: Report, ros: str) -> None:
     from robosc.cli.table import boxed, terminal_width
 
-    headers = ("robot", "time to goal", "distance", "closest approach", "commands", "refused")
+    shared = any(math.isfinite(r.closest_robot) for r in report.robots)
+    headers: tuple[str, ...] = ("robot", "time to goal", "distance", "closest approach", "commands", "refused")
+    if shared:  # the robots are bodies to each other
+        headers = (*headers[:4], "closest robot", *headers[4:])
     rows = []
     for r in report.robots:
         if r.reached is not None:
@@ -168,7 +175,10 @@ def _print(report: Report, ros: str) -> None:
             goal = f"hit at {r.collided_at:.1f} s"
         else:
             goal = "not reached"
-        rows.append((r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused)))
+        row = [r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused)]
+        if shared:
+            row.insert(4, f"{r.closest_robot:.2f} m")
+        rows.append(tuple(row))
     title = f"{len(report.robots)} robot(s), ROS: {ros}"
     click.echo(boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width()))
     verdict = "ok" if report.ok else "FAILED"

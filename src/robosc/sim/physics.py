@@ -1,11 +1,13 @@
 """The robots' bodies and sensors, simulated by IR-SIM (``ir-sim`` on PyPI): differential
 drive, a 2D LiDAR cast against the walls and boxes, and collision detection.
 
-Each robot runs in an IR-SIM environment of its own built from the same world, so robots
-share the map but neither see nor touch each other (a fleet's controllers are independent;
-see README "Limitations"). This module only turns a world into IR-SIM's configuration and
-reads it back in the conventions of ROS: a LaserScan whose ``ranges[0]`` looks straight
-ahead and which goes round counter-clockwise (a TurtleBot's LDS), distances in metres.
+In a ``shared`` world all robots live in one IR-SIM environment: each LiDAR sees the other
+robots and robots touch each other. Otherwise each robot runs in an environment of its own
+built from the same world (N copies of one robot sent through one maze from one start), so
+robots share the map but neither see nor touch each other. This module only turns a world
+into IR-SIM's configuration and reads it back in the conventions of ROS: a LaserScan whose
+``ranges[0]`` looks straight ahead and which goes round counter-clockwise (a TurtleBot's LDS),
+distances in metres.
 """
 
 from __future__ import annotations
@@ -18,8 +20,10 @@ from typing import Any
 from robosc.sim.world import Line, Pose, World
 
 
-def irsim_config(world: World, start: Pose) -> dict[str, Any]:
-    """IR-SIM's world configuration for one robot of ``world`` starting at ``start``."""
+def irsim_config(world: World, start: Pose | list[Pose]) -> dict[str, Any]:
+    """IR-SIM's world configuration for the robots of ``world`` starting at ``start`` (one
+    pose, or one per robot, all in one environment)."""
+    starts = start if isinstance(start, list) else [start]
     lidar = world.robot.lidar
     turn = max(world.robot.max_angular, world.robot.turn_speed)
     obstacles: list[dict[str, Any]] = [
@@ -41,7 +45,7 @@ def irsim_config(world: World, start: Pose) -> dict[str, Any]:
             {
                 "kinematics": {"name": "diff"},
                 "shape": {"name": "circle", "radius": world.robot.radius},
-                "state": [start.x, start.y, start.heading],
+                "state": [pose.x, pose.y, pose.heading],
                 "vel_max": [world.robot.max_linear, turn],
                 "vel_min": [-world.robot.max_linear, -turn],
                 "sensors": [
@@ -55,6 +59,7 @@ def irsim_config(world: World, start: Pose) -> dict[str, Any]:
                     }
                 ],
             }
+            for pose in starts
         ],
     }
     if obstacles:
@@ -73,20 +78,33 @@ def _import_irsim() -> Any:
     return irsim
 
 
-class Body:
-    """One simulated robot: its pose, the velocity it is driven with, its LiDAR."""
+class Bodies:
+    """Robots in one IR-SIM environment (each LiDAR sees the others, they touch each other):
+    ``bodies``, stepped together."""
 
-    def __init__(self, world: World, start: Pose) -> None:
+    def __init__(self, world: World, starts: list[Pose]) -> None:
         import yaml
 
         irsim = _import_irsim()
 
-        self.world = world
         with tempfile.TemporaryDirectory(prefix="robosc-sim-") as folder:
             path = Path(folder) / "world.yaml"
-            path.write_text(yaml.safe_dump(irsim_config(world, start)), encoding="utf-8")
+            path.write_text(yaml.safe_dump(irsim_config(world, list(starts))), encoding="utf-8")
             self.env = irsim.make(str(path), display=False, headless=True, log_level="ERROR")
-        self.robot = self.env.robot_list[0]
+        self.bodies = [Body(world, self.env, robot) for robot in self.env.robot_list]
+
+    def step(self, velocities: list[tuple[float, float]]) -> None:
+        """One step of every robot, each driven with its (linear, angular) velocity."""
+        self.env.step([[linear, angular] for linear, angular in velocities])
+
+
+class Body:
+    """One simulated robot: its pose, the velocity it is driven with, its LiDAR."""
+
+    def __init__(self, world: World, env: Any, robot: Any) -> None:
+        self.world = world
+        self.env = env
+        self.robot = robot
         from shapely import MultiLineString, Point, unary_union
         from shapely.geometry import box
 
@@ -105,9 +123,6 @@ class Body:
         x, y, heading = (float(v) for v in self.robot.state[:3, 0])
         return Pose(x, y, heading)
 
-    def step(self, linear: float, angular: float) -> None:
-        self.env.step([linear, angular])
-
     @property
     def collided(self) -> bool:
         return bool(self.robot.collision) or self.clearance() <= 0.0
@@ -122,7 +137,7 @@ class Body:
     def scan(self) -> list[float]:
         """The LiDAR's ranges, ``ranges[0]`` ahead, counter-clockwise; no return reads ``inf``
         (REP 117)."""
-        data = self.env.get_lidar_scan()
+        data = self.robot.get_lidar_scan()
         ranges = data["ranges"]
         valid = data.get("valid")
         beams = self.world.robot.lidar.beams

@@ -6,6 +6,7 @@ or the timeout passed. ``ros=0`` runs the same supervisors in this process, with
 
 from __future__ import annotations
 
+import math
 import tempfile
 import time
 import types
@@ -27,6 +28,7 @@ class RobotReport:
     collided_at: float | None
     commands: int
     refused: int
+    closest_robot: float = math.inf  # in a shared world: closest approach to another robot's edge
 
 
 @record
@@ -78,7 +80,7 @@ def robot_names(count: int) -> list[str]:
 
 def report(sim: Simulation, ok: bool, why: str, wall: float, folder: str = "") -> Report:
     robots = tuple(
-        RobotReport(name, s.reached, s.distance, s.closest, s.collided_at, s.commands, s.refused)
+        RobotReport(name, s.reached, s.distance, s.closest, s.collided_at, s.commands, s.refused, s.closest_robot)
         for name, s in zip(robot_names(sim.robots), sim.status, strict=True)
     )
     return Report(ok, why, robots, sim.time, wall, folder, tuple(sim.status))

@@ -15,7 +15,7 @@ import math
 from typing import Any
 
 from robosc.record import field, record
-from robosc.sim.physics import Body
+from robosc.sim.physics import Bodies, Body
 from robosc.sim.world import World
 
 SCAN_KEPT_EVERY = 1.0  # seconds of simulated time between the scans a run keeps for its recording
@@ -37,7 +37,9 @@ class Status:
     reached: float | None = None  # simulated time at which it reached (and held) the goal
     distance: float = 0.0  # metres travelled
     closest: float = math.inf  # closest approach of its edge to a wall or box, metres
+    closest_robot: float = math.inf  # in a shared world: to another robot's edge, metres
     collided_at: float | None = None
+    touched: str = ""  # what it touched: "a wall or box", or another robot ("robot2")
     commands: int = 0  # velocity and rotate commands received
     refused: int = 0  # commands the supervisor refused (the node's ``blocked`` reports)
     bad_commands: int = 0  # commands with a number that is not finite (the robot stopped)
@@ -64,7 +66,14 @@ class Simulation:
         if robots < 1:
             raise ValueError("at least one robot")
         self.world = world
-        self.bodies = [Body(world, world.start(i)) for i in range(robots)]
+        why = world.room_for(robots)
+        if why is not None:
+            raise ValueError(why)
+        if world.shared:  # one environment: the robots are bodies to each other
+            self.groups = [Bodies(world, [world.start(i) for i in range(robots)])]
+        else:
+            self.groups = [Bodies(world, [world.start(i)]) for i in range(robots)]
+        self.bodies: list[Body] = [body for group in self.groups for body in group.bodies]
         self.drives = [_Drive() for _ in range(robots)]
         self.status = [Status() for _ in range(robots)]
         self.time = 0.0
@@ -118,13 +127,18 @@ class Simulation:
         """One step of simulated time; returns the messages the robots' sensors publish."""
         dt = self.world.step
         out: list[Message] = []
-        for i, (body, drive) in enumerate(zip(self.bodies, self.drives, strict=True)):
+        velocities = []
+        for i, drive in enumerate(self.drives):
             linear, angular = self._velocity(drive, dt)
-            before = body.pose
-            if self.status[i].collided_at is None:
-                body.step(linear, angular)
+            velocities.append((linear, angular) if self.status[i].collided_at is None else (0.0, 0.0))
+        before = [body.pose for body in self.bodies]
+        first = 0
+        for group in self.groups:
+            group.step(velocities[first : first + len(group.bodies)])
+            first += len(group.bodies)
+        for i, (body, drive) in enumerate(zip(self.bodies, self.drives, strict=True)):
             after = body.pose
-            self.status[i].distance += math.hypot(after.x - before.x, after.y - before.y)
+            self.status[i].distance += math.hypot(after.x - before[i].x, after.y - before[i].y)
             if drive.turning and abs(drive.turn_left) < 1e-9:
                 drive.turning = False
                 out.append(Message(i, "rotate_done"))
@@ -166,8 +180,19 @@ class Simulation:
         status, drive = self.status[i], self.drives[i]
         clearance = body.clearance()
         status.closest = min(status.closest, clearance)
-        if status.collided_at is None and (clearance <= 0.0 or body.robot.collision):
+        nearest, gap = "", math.inf
+        if self.world.shared:  # the other robots' edges
+            pose, reach = body.pose, 2 * self.world.robot.radius
+            for k, other in enumerate(self.bodies):
+                there = other.pose
+                found = math.hypot(pose.x - there.x, pose.y - there.y) - reach
+                if k != i and found < gap:
+                    nearest, gap = f"robot{k + 1}", found
+            status.closest_robot = min(status.closest_robot, gap)
+        # IR-SIM stops bodies at contact, so a gap of a hair is a touch too
+        if status.collided_at is None and (clearance <= 0.0 or gap <= 1e-3 or body.robot.collision):
             status.collided_at = self.time
+            status.touched = nearest if nearest and gap <= max(clearance, 1e-3) else "a wall or box"
         if self.steps % self._trajectory_every == 0:
             self._record(i, body)
         moving = drive.turning or (
@@ -201,8 +226,11 @@ class Simulation:
         """How the run ended, (success, why), or None while it goes on: every robot reached
         the goal, one touched a wall or box, or ``timeout`` seconds of simulated time passed."""
         if self.any_collided:
-            hit = [f"robot{i + 1}" for i, s in enumerate(self.status) if s.collided_at is not None]
-            return False, f"{', '.join(hit)} touched a wall or box at t = {self.time:.1f} s"
+            hit = [(f"robot{i + 1}", s.touched) for i, s in enumerate(self.status) if s.collided_at is not None]
+            if all(what == "a wall or box" for _, what in hit):
+                return False, f"{', '.join(name for name, _ in hit)} touched a wall or box at t = {self.time:.1f} s"
+            said = "; ".join(f"{name} touched {what}" for name, what in hit)
+            return False, f"{said} at t = {self.time:.1f} s"
         if self.all_reached:
             return True, "every robot reached the goal"
         if self.time >= timeout - 1e-9:

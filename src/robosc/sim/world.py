@@ -103,10 +103,24 @@ class World:
     topics: dict[str, str] = field(compare=False)
     line: Line | None = None
     presses: tuple[tuple[float, float], ...] = ()  # emergency stop pressed over [t0, t1)
+    # the robots are bodies to each other: one physics environment, each LiDAR sees the others,
+    # and contact between robots is a collision; each robot needs a start of its own
+    shared: bool = False
 
     def start(self, index: int) -> Pose:
-        """Robot ``index`` starts here (robots share the listed starts when there are more)."""
+        """Robot ``index`` starts here (robots share the listed starts when there are more,
+        in a world that is not ``shared``)."""
         return self.starts[index % len(self.starts)]
+
+    def room_for(self, robots: int) -> str | None:
+        """Why ``robots`` robots cannot run in this world, or None: a shared world needs a
+        start for each."""
+        if self.shared and robots > len(self.starts):
+            return (
+                f"{self.path}: the robots of this world are bodies to each other (shared: true), so each "
+                f"needs a start of its own: it has {len(self.starts)}, and {robots} robots were asked for"
+            )
+        return None
 
 
 # ---- reading -------------------------------------------------------------------------------
@@ -176,6 +190,13 @@ class _Reader:
         if not isinstance(node, yaml.ScalarNode) or node.tag != "tag:yaml.org,2002:str" or not node.value:
             raise self.fail(node, f"{what} must be a non-empty text")
         return str(node.value)
+
+    def flag(self, node: Any, what: str) -> bool:
+        import yaml
+
+        if not isinstance(node, yaml.ScalarNode) or node.tag != "tag:yaml.org,2002:bool":
+            raise self.fail(node, f"{what} must be true or false")
+        return node.value.lower() in ("true", "yes", "on")
 
     def point(self, node: Any, what: str) -> tuple[float, float]:
         x, y = self.sequence(node, what, 2)
@@ -259,7 +280,10 @@ def _check_depth(text: str, name: str) -> None:
 
 
 def _world(r: _Reader, root: Any) -> World:
-    keys = {"world", "size", "step", "robot", "starts", "goal", "walls", "boxes", "topics", "line", "emergency_stop"}
+    keys = {
+        "world", "size", "step", "robot", "starts", "goal", "walls", "boxes", "topics", "line", "emergency_stop",
+        "shared",
+    }
     top = r.mapping(root, "the world", keys)
     for required in ("world", "size", "starts", "goal"):
         if required not in top:
@@ -303,6 +327,14 @@ def _world(r: _Reader, root: Any) -> World:
         for role, node in r.mapping(top["topics"], "topics", set(TOPIC_ROLES)).items():
             topics[role] = r.text(node, f"the topic of '{role}'")
     line = _line(r, top["line"]) if "line" in top else None
+    shared = r.flag(top["shared"], "shared") if "shared" in top else False
+    if shared:  # bodies to each other: no two may start touching
+        nodes = r.sequence(top["starts"], "starts")
+        for i, a in enumerate(starts):
+            for j in range(i):
+                b = starts[j]
+                if math.hypot(a.x - b.x, a.y - b.y) <= 2 * robot.radius:
+                    raise r.fail(nodes[i], f"start {i + 1} touches start {j + 1}: in a shared world robots are bodies")
     presses = []
     if "emergency_stop" in top:
         for node in r.sequence(top["emergency_stop"], "emergency_stop (a list of [pressed, released] times)"):
@@ -320,6 +352,7 @@ def _world(r: _Reader, root: Any) -> World:
         topics=topics,
         line=line,
         presses=tuple(presses),
+        shared=shared,
     )
 
 
