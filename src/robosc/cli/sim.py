@@ -29,7 +29,19 @@ if TYPE_CHECKING:
     help="Middleware: 2 (rclpy, Fast DDS), 1 (rospy, a rosmaster of its own) or none "
     "(the supervisors in this process, no ROS).",
 )
-@click.option("--robots", type=click.IntRange(1, 64), default=1, show_default=True, help="Robots in the world.")
+@click.option(
+    "--robots",
+    type=click.IntRange(1, 64),
+    default=None,
+    help="Robots in the world (default: 1; in a fleet's world, the model's count of robots).",
+)
+@click.option(
+    "--tasks",
+    type=click.IntRange(1, 1000),
+    default=1,
+    show_default=True,
+    help="In a fleet's world: the tasks each robot must do before the run ends well.",
+)
 @click.option(
     "--timeout",
     type=click.FloatRange(min=0.0, min_open=True, max=86400.0),
@@ -68,7 +80,8 @@ def sim(
     world_file: str,
     model: str,
     ros: str,
-    robots: int,
+    robots: int | None,
+    tasks: int,
     timeout: float,
     speed: float,
     rate: float,
@@ -87,6 +100,9 @@ def sim(
         world = load_world(world_file)
     except WorldError as exc:
         raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
+    if world.fleet is not None:
+        _fleet(world, model, include, ros, robots, tasks, timeout, rate, seed)
+    robots = robots or 1
     crowded = world.room_for(robots)
     if crowded is not None:
         raise input_problem(crowded)
@@ -134,6 +150,45 @@ def _run(
         raise input_problem(f"{model} {exc}") from None
     except SessionError as exc:
         raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+
+
+def _fleet(
+    world: Any, model: str, include: tuple[str, ...], ros: str, robots: int | None, tasks: int, timeout: float,
+    rate: float, seed: int,
+) -> None:
+    """A fleet's world: the coordinator and a driver per robot in this process (exits)."""
+    if ros != "none":
+        raise input_problem(
+            f"{world.path}: a fleet's world runs without middleware so far: add --ros none "
+            "(the coordinator package on ROS against the simulated drivers is not done yet)"
+        )
+    if importlib.util.find_spec("irsim") is None:
+        raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
+    from robosc.cli.table import boxed, terminal_width
+    from robosc.runtime.simulator import load_module
+    from robosc.sim.fleet import FleetMisfit, FleetRun, instances
+
+    _, plan = supervised(model, include, "a simulation")
+    module = load_module(plan)
+    count = len(instances(module))
+    try:
+        run = FleetRun(world, module, robots if robots is not None else count, seed=seed, rate=rate)
+    except (FleetMisfit, ValueError) as exc:
+        raise input_problem(f"{model}: {exc}") from None
+    report = run.run(tasks=tasks, timeout=timeout)
+    headers = ("robot", "tasks", "waiting", "distance", "closest robot", "stops", "collision")
+    rows = []
+    for status, state, closest in zip(report.robots, run.sim.status, report.closest_robot, strict=True):
+        hit = "-" if state.collided_at is None else f"at {state.collided_at:.1f} s"
+        rows.append((
+            status.name, str(status.tasks), f"{status.waiting:.0f} s", f"{state.distance:.1f} m", f"{closest:.2f} m",
+            str(status.stops), hit,
+        ))
+    title = f"{len(rows)} robot(s) in {world.name}, no middleware"
+    click.echo(boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width()))
+    verdict = "ok" if report.ok else "FAILED"
+    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated)")
+    raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
 
 def _say_where(graph: object) -> None:

@@ -137,16 +137,17 @@ class Body:
     def scan(self) -> list[float]:
         """The LiDAR's ranges, ``ranges[0]`` ahead, counter-clockwise; no return reads ``inf``
         (REP 117)."""
+        import numpy
+
         data = self.robot.get_lidar_scan()
-        ranges = data["ranges"]
-        valid = data.get("valid")
         beams = self.world.robot.lidar.beams
-        out = []
-        for j in range(beams):
-            k = round((2 * math.pi * j / beams + math.pi) / (2 * math.pi / beams)) % beams
-            value = float(ranges[k])
-            out.append(value if valid is None or bool(valid[k]) else math.inf)
-        return out
+        # IR-SIM's ray k looks at -pi + k increments: ROS's beam j (j increments from ahead) is its ray j + beams / 2
+        order = [round((2 * math.pi * j / beams + math.pi) / (2 * math.pi / beams)) % beams for j in range(beams)]
+        ranges = numpy.asarray(data["ranges"], dtype=float)[order]
+        valid = data.get("valid")
+        if valid is not None:
+            ranges = numpy.where(numpy.asarray(valid, dtype=bool)[order], ranges, math.inf)
+        return [float(v) for v in ranges.tolist()]
 
     def line_reading(self) -> float | None:
         """The line detector: the correction (``gain`` per metre the line lies to the right of

@@ -90,6 +90,60 @@ class Goal:
 
 
 @record
+class Door:
+    """A door across a doorway (the segment ``a``-``b``): a robot may cross it only while it is
+    open; opening and closing take ``seconds``."""
+
+    a: tuple[float, float]
+    b: tuple[float, float]
+    seconds: float = 1.0
+
+
+@record
+class Charger:
+    """Where a robot charges: it drives there from its home through ``home + via``, charges
+    ``seconds``, drives back the same way and then says it is charged."""
+
+    at: tuple[float, float]
+    via: tuple[float, float] = (0.0, 0.0)
+    seconds: float = 3.0
+
+
+@record
+class Fleet:
+    """What a fleet's robots do in the world. Each ``go`` of a robot drives the next leg of
+    ``task`` (its waypoints in turn; ``home`` is the robot's start and ``lane`` its home +
+    ``lane``), and the robot says ``arrived`` at the leg's end, or ``stopped`` where its way is
+    blocked; ``cells`` name the places the report tells the robots in."""
+
+    waypoints: tuple[tuple[str, tuple[float, float]], ...]
+    task: tuple[tuple[str, ...], ...]
+    cells: tuple[tuple[str, tuple[tuple[float, float], ...]], ...] = ()
+    lane: tuple[float, float] = (0.0, 0.0)
+    door: Door | None = None
+    charger: Charger | None = None
+
+    def point(self, name: str, home: Pose) -> tuple[float, float]:
+        """Where waypoint ``name`` is for the robot whose home is ``home``."""
+        if name == "home":
+            return home.x, home.y
+        if name == "lane":
+            return home.x + self.lane[0], home.y + self.lane[1]
+        return dict(self.waypoints)[name]
+
+    def cell(self, x: float, y: float) -> str:
+        """The name of the cell (x, y) is in ("" for none)."""
+        for name, polygon in self.cells:
+            inside = False
+            for (x1, y1), (x2, y2) in zip(polygon, polygon[1:] + polygon[:1], strict=True):
+                if (y1 > y) != (y2 > y) and x < x1 + (y - y1) * (x2 - x1) / (y2 - y1):
+                    inside = not inside
+            if inside:
+                return name
+        return ""
+
+
+@record
 class World:
     name: str
     path: str
@@ -106,6 +160,7 @@ class World:
     # the robots are bodies to each other: one physics environment, each LiDAR sees the others,
     # and contact between robots is a collision; each robot needs a start of its own
     shared: bool = False
+    fleet: Fleet | None = None  # a fleet's world: waypoints, the task, a door, a charger
 
     def start(self, index: int) -> Pose:
         """Robot ``index`` starts here (robots share the listed starts when there are more,
@@ -282,7 +337,7 @@ def _check_depth(text: str, name: str) -> None:
 def _world(r: _Reader, root: Any) -> World:
     keys = {
         "world", "size", "step", "robot", "starts", "goal", "walls", "boxes", "topics", "line", "emergency_stop",
-        "shared",
+        "shared", "fleet",
     }
     top = r.mapping(root, "the world", keys)
     for required in ("world", "size", "starts", "goal"):
@@ -335,6 +390,9 @@ def _world(r: _Reader, root: Any) -> World:
                 b = starts[j]
                 if math.hypot(a.x - b.x, a.y - b.y) <= 2 * robot.radius:
                     raise r.fail(nodes[i], f"start {i + 1} touches start {j + 1}: in a shared world robots are bodies")
+    fleet = _fleet(r, top["fleet"]) if "fleet" in top else None
+    if fleet is not None and not shared:
+        raise r.fail(top["fleet"], "a fleet's world is shared: add 'shared: true' (its robots are bodies to each other)")
     presses = []
     if "emergency_stop" in top:
         for node in r.sequence(top["emergency_stop"], "emergency_stop (a list of [pressed, released] times)"):
@@ -353,7 +411,66 @@ def _world(r: _Reader, root: Any) -> World:
         line=line,
         presses=tuple(presses),
         shared=shared,
+        fleet=fleet,
     )
+
+
+def _fleet(r: _Reader, node: Any) -> Fleet:
+    top = r.mapping(node, "fleet", {"waypoints", "task", "cells", "lane", "door", "charger"})
+    for required in ("waypoints", "task"):
+        if required not in top:
+            raise r.fail(node, f"the fleet needs '{required}'")
+    import yaml
+
+    waypoints = {}
+    for name, point in r.mapping(top["waypoints"], "waypoints", _AnyKey()).items():
+        if name in ("home", "lane"):
+            raise r.fail(point, f"'{name}' is each robot's own: it cannot be a waypoint")
+        waypoints[name] = r.point(point, f"waypoint '{name}'")
+    task = []
+    for leg in r.sequence(top["task"], "task (one list of waypoints per go)"):
+        names = r.sequence(leg, "a leg of the task (a list of waypoints)")
+        if not names:
+            raise r.fail(leg, "a leg of the task needs at least one waypoint")
+        for n in names:
+            if not isinstance(n, yaml.ScalarNode) or (n.value not in waypoints and n.value not in ("home", "lane")):
+                raise r.fail(n, f"unknown waypoint '{getattr(n, 'value', n)}' (the waypoints, home, lane)")
+        task.append(tuple(str(n.value) for n in names))
+    if not task:
+        raise r.fail(top["task"], "the task needs at least one leg")
+    cells = []
+    for name, polygon in (r.mapping(top["cells"], "cells", _AnyKey()).items() if "cells" in top else []):
+        points = tuple(r.point(p, f"a corner of cell '{name}'") for p in r.sequence(polygon, f"cell '{name}'"))
+        if len(points) < 3:
+            raise r.fail(polygon, f"cell '{name}' needs at least three corners")
+        cells.append((name, points))
+    lane = r.point(top["lane"], "lane") if "lane" in top else (0.0, 0.0)
+    door = None
+    if "door" in top:
+        d = r.mapping(top["door"], "door", {"from", "to", "seconds"})
+        for required in ("from", "to"):
+            if required not in d:
+                raise r.fail(top["door"], f"the door needs '{required}'")
+        seconds = r.number(d["seconds"], "door seconds", positive=True) if "seconds" in d else 1.0
+        door = Door(r.point(d["from"], "door from"), r.point(d["to"], "door to"), seconds)
+    charger = None
+    if "charger" in top:
+        c = r.mapping(top["charger"], "charger", {"at", "via", "seconds"})
+        if "at" not in c:
+            raise r.fail(top["charger"], "the charger needs 'at'")
+        charger = Charger(
+            r.point(c["at"], "charger at"),
+            r.point(c["via"], "charger via") if "via" in c else (0.0, 0.0),
+            r.number(c["seconds"], "charger seconds", positive=True) if "seconds" in c else 3.0,
+        )
+    return Fleet(tuple(waypoints.items()), tuple(task), tuple(cells), lane, door, charger)
+
+
+class _AnyKey(set):  # type: ignore[type-arg]
+    """Every key is allowed (named waypoints and cells)."""
+
+    def __contains__(self, item: object) -> bool:
+        return isinstance(item, str) and bool(item)
 
 
 def _robot(r: _Reader, node: Any) -> Robot:

@@ -1,0 +1,317 @@
+"""A fleet in one world, without middleware: the generated coordinator (one supervisor for every
+robot, the module ``robosc generate`` writes) commands drivers that do what a fleet's robot
+drivers do, in one physics environment where the robots are bodies to each other.
+
+What the world offers a fleet model, by the names of its communications (``bot1.go``: the
+instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...):
+
+* ``go`` (a command): drive the next leg of the world's task (``fleet.task``: waypoints in
+  turn); the driver answers ``arrived`` at the leg's end, or ``stopped`` where its LiDAR sees its
+  way blocked for half a second (it then waits; the next ``go`` goes on with the same leg).
+  A ``go`` that comes while the robot is still driving is queued, as a driver queues goals.
+* ``dock``: drive to the charger, charge, drive home, then answer ``charged``.
+* ``open_door`` / ``close_door``: the door opens or closes in its ``seconds`` and answers
+  ``door_opened`` / ``door_closed``; a robot in the doorway while the door is not open is a
+  collision.
+
+The run ends when every robot has done its tasks (success), at the first collision, when no
+robot has got on with its task (arrived at the end of a leg) for ``stall`` seconds while tasks
+remain (a deadlock, or robots stopping again and again: each robot's cell and what it does are
+told), or at the time-out.
+"""
+
+from __future__ import annotations
+
+import math
+import types
+from typing import Any
+
+from robosc.record import field, record
+from robosc.sim.simulation import Simulation
+from robosc.sim.world import Fleet, Pose, World
+
+REACHED = 0.06  # metres from a waypoint that count as there
+BLOCKED_GAP = 0.25  # metres between the robot's edge and what its LiDAR sees ahead that block it
+BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
+AHEAD = math.radians(25)  # half the angle the driver looks ahead in
+ROBOT_COMMANDS = ("go", "dock")
+ROBOT_ANSWERS = ("arrived", "stopped", "charged")
+DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
+
+
+class FleetMisfit(Exception):
+    """The model's fleet cannot run in the world (its size, the world's robots)."""
+
+
+def instances(module: types.ModuleType) -> list[str]:
+    """The instances the coordinator commands with ``go``, in order (bot1, bot2, ..., bot10)."""
+    found = {c.name.rsplit(".", 1)[0] for c in module.Robot.COMMUNICATIONS if c.name.endswith(".go")}
+
+    def order(name: str) -> tuple[str, int]:
+        base = name.rstrip("0123456789")
+        return base, int(name[len(base) :] or 0)
+
+    return sorted(found, key=order)
+
+
+@record(frozen=False)
+class FleetStatus:
+    """What one robot did in the run."""
+
+    name: str
+    tasks: int = 0  # times it drove the whole task
+    waiting: float = 0.0  # simulated seconds it stood still with tasks left (not charging)
+    stops: int = 0  # times it stopped because its way was blocked
+    commands: list[tuple[float, str]] = field(default_factory=list)  # (time, command) it got
+
+
+class Driver:
+    """One robot's driver: drives the legs of the task, docks, and answers as a fleet's robot
+    does (see the module's description)."""
+
+    def __init__(self, index: int, fleet: Fleet, home: Pose) -> None:
+        self.index, self.fleet, self.home = index, fleet, home
+        self.leg = 0  # the next leg of the task
+        self.path: list[tuple[float, float]] = []  # points still to reach
+        self.doing = "idle"  # idle, driving, stopped, docking, charging, undocking
+        self.queued = 0  # gos that came while it was driving
+        self.blocked_since: float | None = None
+        self.charged_at = 0.0
+        self.answers: list[str] = []
+
+    def command(self, name: str, now: float) -> None:
+        if name == "go":
+            if self.doing == "stopped":
+                self.doing = "driving"  # go on with the same leg
+                self.blocked_since = None
+            elif self.doing in ("driving", "docking", "charging", "undocking"):
+                self.queued += 1
+            else:
+                self._start_leg()
+        elif name == "dock" and self.doing == "idle" and self.fleet.charger is not None:
+            charger = self.fleet.charger
+            self.path = [(self.home.x + charger.via[0], self.home.y + charger.via[1]), charger.at]
+            self.doing = "docking"
+
+    def _start_leg(self) -> None:
+        names = self.fleet.task[self.leg]
+        self.path = [self.fleet.point(name, self.home) for name in names]
+        self.doing = "driving"
+
+    def step(self, sim: Simulation, scan: list[float] | None, now: float, status: FleetStatus) -> None:
+        """Drive toward the next point of the path; answer what happened."""
+        if self.doing == "charging":
+            if now >= self.charged_at:
+                charger = self.fleet.charger
+                assert charger is not None
+                self.path = [(self.home.x + charger.via[0], self.home.y + charger.via[1]), (self.home.x, self.home.y)]
+                self.doing = "undocking"
+            return
+        if self.doing not in ("driving", "docking", "undocking") or not self.path:
+            return
+        pose = sim.bodies[self.index].pose
+        if self.doing == "driving" and scan is not None and self._blocked(sim, scan):
+            if self.blocked_since is None:
+                self.blocked_since = now
+            if now - self.blocked_since >= BLOCKED_FOR:
+                sim.command_velocity(self.index, 0.0, 0.0)
+                self.doing = "stopped"
+                status.stops += 1
+                self.answers.append("stopped")
+                return
+            sim.command_velocity(self.index, 0.0, 0.0)
+            return
+        self.blocked_since = None
+        tx, ty = self.path[0]
+        distance = math.hypot(tx - pose.x, ty - pose.y)
+        if distance < REACHED:
+            self.path.pop(0)
+            if not self.path:
+                sim.command_velocity(self.index, 0.0, 0.0)
+                self._finished(now, status)
+            return
+        error = math.atan2(math.sin(math.atan2(ty - pose.y, tx - pose.x) - pose.heading),
+                           math.cos(math.atan2(ty - pose.y, tx - pose.x) - pose.heading))
+        limits = sim.world.robot
+        angular = max(-limits.max_angular, min(limits.max_angular, 3.0 * error))
+        linear = 0.0 if abs(error) > 0.35 else min(limits.max_linear, 1.5 * distance)
+        sim.command_velocity(self.index, linear, angular)
+
+    def _finished(self, now: float, status: FleetStatus) -> None:
+        if self.doing == "docking":
+            charger = self.fleet.charger
+            assert charger is not None
+            self.doing, self.charged_at = "charging", now + charger.seconds
+            return
+        if self.doing == "undocking":
+            self.doing = "idle"
+            self.answers.append("charged")
+        else:
+            self.doing = "idle"
+            self.answers.append("arrived")
+            self.leg += 1
+            if self.leg == len(self.fleet.task):
+                self.leg = 0
+                status.tasks += 1
+        if self.queued:
+            self.queued -= 1
+            self._start_leg()
+
+    def _blocked(self, sim: Simulation, scan: list[float]) -> bool:
+        """Whether something is closer than BLOCKED_GAP ahead of the robot, in the direction it drives."""
+        beams = len(scan)
+        reach = sim.world.robot.radius + BLOCKED_GAP
+        pose = sim.bodies[self.index].pose
+        tx, ty = self.path[0]
+        heading = math.atan2(ty - pose.y, tx - pose.x) - pose.heading  # toward the next point
+        step = 2 * math.pi / beams  # ranges[0] ahead, counter-clockwise
+        centre, half = round(heading / step), int(AHEAD / step)
+        return any(scan[(centre + k) % beams] < reach for k in range(-half, half + 1))
+
+
+class DoorSim:
+    """The door: closed, opening, open or closing; it answers when it has opened or closed."""
+
+    def __init__(self, seconds: float) -> None:
+        self.state, self.seconds, self.until = "closed", seconds, 0.0
+        self.answers: list[str] = []
+
+    def command(self, name: str, now: float) -> None:
+        moving = DOOR_COMMANDS[name]
+        if (moving, self.state) in (("opening", "closed"), ("closing", "open")):
+            self.state, self.until = moving, now + self.seconds
+
+    def step(self, now: float) -> None:
+        if self.state in ("opening", "closing") and now >= self.until:
+            self.state = "open" if self.state == "opening" else "closed"
+            self.answers.append("door_opened" if self.state == "open" else "door_closed")
+
+
+@record
+class FleetReport:
+    ok: bool
+    why: str
+    robots: tuple[FleetStatus, ...]
+    simulated: float
+    closest_robot: tuple[float, ...]  # per robot, metres between its edge and another robot's
+    collisions: int
+    ignored: int  # answers the coordinator has no event for
+
+
+class FleetRun:
+    """The generated coordinator (``module``) commanding ``world``'s fleet in this process."""
+
+    def __init__(self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0) -> None:
+        if world.fleet is None:
+            raise FleetMisfit(f"{world.path} is not a fleet's world (it has no 'fleet')")
+        names = instances(module)
+        if len(names) != robots:
+            raise FleetMisfit(
+                f"the model's fleet has {len(names)} robots ({', '.join(names) or 'none'}) and {robots} were asked for"
+            )
+        self.sim = Simulation(world, robots)
+        self.fleet = world.fleet
+        self.names = names
+        self.rate = rate
+        self.drivers = [Driver(i, world.fleet, world.start(i)) for i in range(robots)]
+        self.status = [FleetStatus(name) for name in names]
+        self.door = DoorSim(world.fleet.door.seconds) if world.fleet.door is not None else None
+        self.ignored = 0
+        self.scans: list[list[float] | None] = [None] * robots
+        run = self
+        index = {name: i for i, name in enumerate(names)}
+
+        class Coordinator(module.Robot):  # type: ignore[name-defined, misc]
+            def send(self, name: str, data: Any) -> bool:
+                robot, _, what = name.rpartition(".")
+                now = run.sim.time
+                if robot in index and what in ROBOT_COMMANDS:
+                    run.drivers[index[robot]].command(what, now)
+                    run.status[index[robot]].commands.append((now, what))
+                elif name in DOOR_COMMANDS and run.door is not None:
+                    run.door.command(name, now)
+                return True
+
+        self.coordinator = Coordinator(seed=seed, warn=lambda text: None, clock=lambda: run.sim.time,
+                                       wait_for_data=False, confirmed=True)
+        self._next_tick = 0.0
+        self._progress = 0.0  # when a robot last arrived at the end of a leg of its task
+
+    def step(self) -> None:
+        sim = self.sim
+        before = [(b.pose.x, b.pose.y) for b in sim.bodies]
+        for message in sim.step():
+            if message.role == "scan":
+                self.scans[message.robot] = message.value
+        now = sim.time
+        for i, (driver, status) in enumerate(zip(self.drivers, self.status, strict=True)):
+            driver.step(sim, self.scans[i], now, status)
+            pose = sim.bodies[i].pose
+            if math.hypot(pose.x - before[i][0], pose.y - before[i][1]) <= 1e-4 and driver.doing in ("idle", "stopped"):
+                status.waiting += sim.world.step
+            for answer in driver.answers:
+                self._deliver(f"{self.names[i]}.{answer}")
+            driver.answers.clear()
+        if self.door is not None:
+            self.door.step(now)
+            for answer in self.door.answers:
+                self._deliver(answer)
+            self.door.answers.clear()
+            self._doorway()
+        if now + 1e-9 >= self._next_tick:
+            self._next_tick += 1.0 / self.rate
+            self.coordinator.tick()
+
+    def _deliver(self, name: str) -> None:
+        if name.endswith(".arrived"):  # a leg of a task done (charging, the door, stopping again: none)
+            self._progress = self.sim.time
+        if name in self.coordinator.EVENT:
+            self.coordinator.deliver(name)
+        else:
+            self.ignored += 1  # the model has no such answer (a zero-time model has no arrived)
+
+    def _doorway(self) -> None:
+        door = self.fleet.door
+        assert door is not None and self.door is not None
+        if self.door.state == "open":
+            return
+        (ax, ay), (bx, by) = door.a, door.b
+        for i, body in enumerate(self.sim.bodies):
+            p = body.pose
+            dx, dy = bx - ax, by - ay
+            t = max(0.0, min(1.0, ((p.x - ax) * dx + (p.y - ay) * dy) / (dx * dx + dy * dy)))
+            if math.hypot(p.x - (ax + t * dx), p.y - (ay + t * dy)) < self.sim.world.robot.radius:
+                status = self.sim.status[i]
+                if status.collided_at is None:
+                    status.collided_at, status.touched = self.sim.time, f"the door ({self.door.state})"
+
+    def verdict(self, tasks: int, timeout: float, stall: float) -> tuple[bool, str] | None:
+        sim = self.sim
+        hit = [(self.names[i], s.touched) for i, s in enumerate(sim.status) if s.collided_at is not None]
+        if hit:
+            named = {f"robot{i + 1}": name for i, name in enumerate(self.names)}
+            said = "; ".join(f"{name} touched {named.get(what, what)}" for name, what in hit)
+            return False, f"collision: {said} at t = {sim.time:.1f} s"
+        if all(s.tasks >= tasks for s in self.status):
+            return True, f"every robot did its {tasks} task(s)"
+        if sim.time - self._progress >= stall:
+            where = ", ".join(
+                f"{name} in {self.fleet.cell(b.pose.x, b.pose.y) or 'no cell'} ({d.doing})"
+                for name, b, d in zip(self.names, sim.bodies, self.drivers, strict=True)
+            )
+            return False, f"deadlock: no robot got on with its task for {stall:g} s: {where}"
+        if sim.time >= timeout - 1e-9:
+            return False, f"timeout: {timeout:g} s of simulated time"
+        return None
+
+    def run(self, tasks: int = 1, timeout: float = 600.0, stall: float = 30.0) -> FleetReport:
+        while True:
+            self.step()
+            ended = self.verdict(tasks, timeout, stall)
+            if ended is not None:
+                break
+        return FleetReport(
+            ended[0], ended[1], tuple(self.status), self.sim.time,
+            tuple(s.closest_robot for s in self.sim.status),
+            sum(1 for s in self.sim.status if s.collided_at is not None), self.ignored,
+        )

@@ -1,0 +1,98 @@
+"""A fleet in one world (robosc.sim.fleet): the warehouse's coordinator commanding drivers whose
+robots take time to move and are bodies to each other, without middleware."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from robosc.api import check_text, plan_supervisor, synthesize_model
+from robosc.cli.main import main
+from robosc.runtime.simulator import load_module
+from robosc.sim.fleet import FleetMisfit, FleetRun
+from robosc.sim.world import WorldError, load_world
+
+pytest.importorskip("irsim")
+
+ROOT = Path(__file__).resolve().parent.parent
+WORLD = ROOT / "examples/worlds/warehouse.yaml"
+
+
+def module_of(path: Path, robots: int = 3) -> object:
+    text = path.read_text().replace("component bot[3]", f"component bot[{robots}]")
+    return load_module(plan_supervisor(synthesize_model(check_text(text, path=str(path)).model)))
+
+
+def test_the_warehouse_fleet_does_its_tasks_in_one_world_without_touching(capsys: pytest.CaptureFixture[str]) -> None:
+    """robosc sim on the warehouse's world: three robots, each drives the whole task at least
+    once through the door and the one-robot cells, none touches another robot, a wall or the
+    door, and the table says so."""
+    code = main(["sim", str(WORLD), str(ROOT / "examples/warehouse.rscd"), "--ros", "none"])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "ok: every robot did its 1 task(s)" in out
+    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
+    assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out
+    assert all(int(tasks) >= 1 and float(closest) > 0.0 for _, tasks, closest in rows), out
+
+
+def test_the_zero_time_warehouse_collides_in_the_same_world() -> None:
+    """The same world driven by the warehouse written as if moves took no time: its supervisor
+    sends the next command before the robot is there, and the run fails with a collision (so
+    the test above can fail)."""
+    run = FleetRun(load_world(WORLD), module_of(ROOT / "docs/models/warehouse_zero_time.rscd"), 3)
+    report = run.run(tasks=1, timeout=300)
+    assert not report.ok and report.why.startswith("collision: "), report.why
+    assert report.collisions >= 1
+
+
+def test_a_fleet_of_another_size_than_the_model_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["sim", str(WORLD), str(ROOT / "examples/warehouse.rscd"), "--ros", "none", "--robots", "4"])
+    assert code == 2
+    assert "the model's fleet has 3 robots (bot1, bot2, bot3) and 4 were asked for" in capsys.readouterr().err
+    with pytest.raises(FleetMisfit, match="has 3 robots"):
+        FleetRun(load_world(WORLD), module_of(ROOT / "examples/warehouse.rscd"), 2)
+    code = main(["sim", str(WORLD), str(ROOT / "examples/warehouse.rscd")])  # ROS: not yet
+    assert code == 2 and "runs without middleware so far: add --ros none" in capsys.readouterr().err
+
+
+def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
+    """A box in the aisle's second cell: a robot drives into the first and, on its way on, sees
+    the box, stops and says `stopped`; the coordinator has it between the two cells (holding
+    both) and tells it to go on, it stops again, and no other robot is sent after it: the run
+    ends as a deadlock naming where it is, with no collision."""
+    text = WORLD.read_text().replace("walls:\n", "boxes:\n  - [6.4, 3.3, 0.3, 0.3]\nwalls:\n", 1)
+    world = tmp_path / "blocked.yaml"
+    world.write_text(text)
+    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3, seed=1)
+    report = run.run(tasks=1, timeout=200, stall=20)
+    assert not report.ok and report.why.startswith("deadlock: "), report.why
+    stopped = [s for s in report.robots if s.stops]
+    assert len(stopped) == 1 and stopped[0].tasks == 0
+    field = next(f[0] for f in run.coordinator.FIELDS if f[0].endswith("_" + stopped[0].name))
+    assert getattr(run.coordinator, field) in ("stopped_out2", "to_out2")
+    assert re.search(rf"{stopped[0].name} in c[12] \((stopped|driving)\)", report.why), report.why
+    assert stopped[0].stops >= 2
+    assert report.collisions == 0
+
+
+@pytest.mark.parametrize(
+    ("change", "line", "message"),
+    [
+        (("shared: true", "shared: false"), 29, "a fleet's world is shared: add 'shared: true'"),
+        (("    - [c2]\n", "    - [c9]\n"), 38, "unknown waypoint 'c9' (the waypoints, home, lane)"),
+        (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 32, "'home' is each robot's own: it cannot be a waypoint"),
+    ],
+)
+def test_a_fleet_world_is_checked_with_file_line_and_column(
+    tmp_path: Path, change: tuple[str, str], line: int, message: str
+) -> None:
+    text = WORLD.read_text()
+    assert change[0] in text
+    path = tmp_path / "w.yaml"
+    path.write_text(text.replace(change[0], change[1], 1))
+    with pytest.raises(WorldError) as caught:
+        load_world(path)
+    assert caught.value.line == line and message in caught.value.message, str(caught.value)
