@@ -25,7 +25,7 @@ from robosc.synthesis.explicit import TooManyStates, synthesize_explicit
 from robosc.synthesis.methods import synthesize_symbolic
 from robosc.synthesis.symbolic import synthesize_monolithic
 
-EXAMPLES = int(os.environ.get("ROBOSC_ORACLE_EXAMPLES", "1200"))
+EXAMPLES = int(os.environ.get("ROBOSC_ORACLE_EXAMPLES", "1000"))
 MAX_STATES = 1_000  # the explicit reference enumerates them all; larger fleets are left out (and counted)
 
 # what the run met: printed by conftest.py's terminal summary

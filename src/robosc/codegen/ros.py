@@ -83,10 +83,10 @@ def driver_duties(rp: RosPlan) -> tuple[DriverDuties, ...]:
     every topic, service and action with its type, its QoS and who answers what."""
     depth = next(p.default for p in PARAMETERS if p.name == "qos_depth")
     reliable = f"reliable, volatile, keep last {depth}" if rp.ros == 2 else f"TCPROS, queue_size {depth}"
+    names = {c.name: _cell(ros_name(c, rp.relative)) for c in rp.plan.communications}
     out = []
     for driver in rp.plan.drivers:
         answers = dict(driver.answers)
-        names = {c.name: _cell(ros_name(c, rp.relative)) for c in rp.plan.communications}
         duties = []
         for c in rp.plan.communications:
             if c.component != driver.component:

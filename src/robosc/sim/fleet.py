@@ -232,6 +232,8 @@ class FleetRun:
                     run.door.command(name, now)
                 return True
 
+        # the simulated robots and the door start where the model starts them (a simulation's
+        # trust_initial_state): nothing to confirm
         self.coordinator = Coordinator(seed=seed, warn=lambda text: None, clock=lambda: run.sim.time,
                                        wait_for_data=False, confirmed=True)
         self._next_tick = 0.0

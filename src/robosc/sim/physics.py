@@ -105,6 +105,9 @@ class Body:
         self.world = world
         self.env = env
         self.robot = robot
+        beams = world.robot.lidar.beams
+        # IR-SIM's ray k looks at -pi + k increments: ROS's beam j (j increments from ahead) is its ray j + beams / 2
+        self._order = [round((2 * math.pi * j / beams + math.pi) / (2 * math.pi / beams)) % beams for j in range(beams)]
         from shapely import MultiLineString, Point, unary_union
         from shapely.geometry import box
 
@@ -140,9 +143,7 @@ class Body:
         import numpy
 
         data = self.robot.get_lidar_scan()
-        beams = self.world.robot.lidar.beams
-        # IR-SIM's ray k looks at -pi + k increments: ROS's beam j (j increments from ahead) is its ray j + beams / 2
-        order = [round((2 * math.pi * j / beams + math.pi) / (2 * math.pi / beams)) % beams for j in range(beams)]
+        order = self._order
         ranges = numpy.asarray(data["ranges"], dtype=float)[order]
         valid = data.get("valid")
         if valid is not None:
