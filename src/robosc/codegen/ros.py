@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from robosc.codegen.templating import environment
+from robosc.codegen.templating import environment, markdown_cell
 from robosc.language.source import Span
 from robosc.record import record
 from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
@@ -69,11 +69,6 @@ class DriverDuties:
     duties: tuple[Duty, ...]
 
 
-def _cell(text: str) -> str:
-    """Text from the model inside a Markdown table's code span: one line, no backtick, no bar."""
-    return "".join("'" if c == "`" else "?" if c < " " else "\\|" if c == "|" else c for c in text)
-
-
 def _type(ros: int, package: str, kind: str, name: str) -> str:
     return f"{package}/{name}" if ros == 1 else f"{package}/{kind}/{name}"
 
@@ -83,7 +78,7 @@ def driver_duties(rp: RosPlan) -> tuple[DriverDuties, ...]:
     every topic, service and action with its type, its QoS and who answers what."""
     depth = next(p.default for p in PARAMETERS if p.name == "qos_depth")
     reliable = f"reliable, volatile, keep last {depth}" if rp.ros == 2 else f"TCPROS, queue_size {depth}"
-    names = {c.name: _cell(ros_name(c, rp.relative)) for c in rp.plan.communications}
+    names = {c.name: markdown_cell(ros_name(c, rp.relative)) for c in rp.plan.communications}
     out = []
     for driver in rp.plan.drivers:
         answers = dict(driver.answers)
@@ -118,10 +113,10 @@ def driver_duties(rp: RosPlan) -> tuple[DriverDuties, ...]:
                 "serve it: accept or reject each goal, send feedback, finish with a result"
             )
             duties.append(Duty(name, _type(rp.ros, c.package, kind, c.ros_type), "node -> driver", c.kind, does))
-        locations = ", ".join(f"`{_cell(location)}`" for location in driver.locations)
+        locations = ", ".join(f"`{markdown_cell(location)}`" for location in driver.locations)
         duties.append(
             Duty(
-                _cell(f"robosc/report/{driver.component}"),
+                markdown_cell(f"robosc/report/{driver.component}"),
                 _type(rp.ros, "std_srvs", "srv", "Trigger"),
                 "node -> driver",
                 "service",
@@ -130,7 +125,7 @@ def driver_duties(rp: RosPlan) -> tuple[DriverDuties, ...]:
         )
         once = {(d.name, d.way): d for d in reversed(duties)}  # a topic several communications share: once
         kept = [d for d in duties if once[d.name, d.way] is d]
-        out.append(DriverDuties(_cell(driver.component), tuple(kept)))
+        out.append(DriverDuties(markdown_cell(driver.component), tuple(kept)))
     return tuple(out)
 
 

@@ -34,6 +34,12 @@ def _markdown_code(value: object) -> str:
     return "".join("'" if c == "`" else "?" if c < " " else c for c in str(value))
 
 
+def markdown_cell(value: object) -> str:
+    """Text from the model inside backticks in a Markdown table's cell: as :func:`_markdown_code`,
+    and no bar that would end the cell."""
+    return _markdown_code(value).replace("|", "\\|")
+
+
 def _python_literal(value: object) -> str:
     """A string (or number) from the model as a Python literal: ``repr`` escapes it."""
     if isinstance(value, str | int | float | bool) or value is None:

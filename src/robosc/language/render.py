@@ -62,17 +62,17 @@ def literal(value: object) -> str:
 
 def _shown(e: m.Expr) -> tuple[str, bool]:
     """``e`` as text, and whether that is an ``any`` / ``all`` over a group (read as a call)."""
-    if isinstance(e, m.Binary) and e.over is not None:
-        over = _over_group(e)
-        if over is not None:
-            return over, True
-    return render(e), False
+    if not isinstance(e, m.Binary):
+        return render(e), False
+    over = _over_group(e) if e.over is not None else None
+    if over is not None:
+        return over, True
+    return f"{_child(e.left, e.op, False)} {e.op} {_child(e.right, e.op, True)}", False
 
 
 def render(e: m.Expr) -> str:
     if isinstance(e, m.Binary):
-        over = _over_group(e) if e.over is not None else None
-        return over or f"{_child(e.left, e.op, False)} {e.op} {_child(e.right, e.op, True)}"
+        return _shown(e)[0]
     if isinstance(e, m.Unary):
         inner, call = _shown(e.operand)
         return f"{e.op}({inner})" if _level(e.operand) < UNARY_LEVEL[e.op] and not call else f"{e.op}{inner}"
