@@ -97,6 +97,7 @@ class World:
         self.due = []  # (when, answer, duplicate)
         self.received = []  # (time, command)
         self.sent = []  # (time, answer, duplicate)
+        self.spurious_sent = 0  # answers nobody asked for
 
     def command(self, event):
         robot = event.rpartition(".")[0]
@@ -129,11 +130,12 @@ class World:
 
     def spurious(self, name, publish):
         """An answer nobody asked for (``charged`` while not charging)."""
+        self.spurious_sent += 1
         self.sent.append((time.time(), name, True))
         publish(name)
 
     def dump(self):
-        return json.dumps({"received": self.received, "sent": self.sent})
+        return json.dumps({"received": self.received, "sent": self.sent, "spurious": self.spurious_sent})
 
 
 def forbidden(log, received, sent, start=None):
