@@ -100,14 +100,14 @@ def sim(
         world = load_world(world_file)
     except WorldError as exc:
         raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
+    if importlib.util.find_spec("irsim") is None:
+        raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     if world.fleet is not None:
         _fleet(world, model, include, ros, robots, tasks, timeout, rate, seed)
     robots = robots or 1
     crowded = world.room_for(robots)
     if crowded is not None:
         raise input_problem(crowded)
-    if importlib.util.find_spec("irsim") is None:
-        raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     result, plan = supervised(model, include, "a simulation")
     if ros != "none":
         _check_middleware(int(ros))
@@ -162,8 +162,6 @@ def _fleet(
             f"{world.path}: a fleet's world runs without middleware so far: add --ros none "
             "(the coordinator package on ROS against the simulated drivers is not done yet)"
         )
-    if importlib.util.find_spec("irsim") is None:
-        raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     from robosc.cli.table import boxed, terminal_width
     from robosc.runtime.simulator import load_module
     from robosc.sim.fleet import FleetMisfit, FleetRun, instances

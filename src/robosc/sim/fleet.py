@@ -26,7 +26,7 @@ import math
 import types
 from typing import Any
 
-from robosc.record import field, record
+from robosc.record import record
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import Fleet, Pose, World
 
@@ -35,7 +35,6 @@ BLOCKED_GAP = 0.25  # metres between the robot's edge and what its LiDAR sees ah
 BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
 AHEAD = math.radians(25)  # half the angle the driver looks ahead in
 ROBOT_COMMANDS = ("go", "dock")
-ROBOT_ANSWERS = ("arrived", "stopped", "charged")
 DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
 
 
@@ -62,7 +61,6 @@ class FleetStatus:
     tasks: int = 0  # times it drove the whole task
     waiting: float = 0.0  # simulated seconds it stood still with tasks left (not charging)
     stops: int = 0  # times it stopped because its way was blocked
-    commands: list[tuple[float, str]] = field(default_factory=list)  # (time, command) it got
 
 
 class Driver:
@@ -89,9 +87,14 @@ class Driver:
             else:
                 self._start_leg()
         elif name == "dock" and self.doing == "idle" and self.fleet.charger is not None:
-            charger = self.fleet.charger
-            self.path = [(self.home.x + charger.via[0], self.home.y + charger.via[1]), charger.at]
+            self.path = [self._via(), self.fleet.charger.at]
             self.doing = "docking"
+
+    def _via(self) -> tuple[float, float]:
+        """The point between this robot's home and the charger (home + the charger's via)."""
+        assert self.fleet.charger is not None
+        via = self.fleet.charger.via
+        return self.home.x + via[0], self.home.y + via[1]
 
     def _start_leg(self) -> None:
         names = self.fleet.task[self.leg]
@@ -102,9 +105,7 @@ class Driver:
         """Drive toward the next point of the path; answer what happened."""
         if self.doing == "charging":
             if now >= self.charged_at:
-                charger = self.fleet.charger
-                assert charger is not None
-                self.path = [(self.home.x + charger.via[0], self.home.y + charger.via[1]), (self.home.x, self.home.y)]
+                self.path = [self._via(), (self.home.x, self.home.y)]
                 self.doing = "undocking"
             return
         if self.doing not in ("driving", "docking", "undocking") or not self.path:
@@ -113,13 +114,11 @@ class Driver:
         if self.doing == "driving" and scan is not None and self._blocked(sim, scan):
             if self.blocked_since is None:
                 self.blocked_since = now
+            sim.command_velocity(self.index, 0.0, 0.0)
             if now - self.blocked_since >= BLOCKED_FOR:
-                sim.command_velocity(self.index, 0.0, 0.0)
                 self.doing = "stopped"
                 status.stops += 1
                 self.answers.append("stopped")
-                return
-            sim.command_velocity(self.index, 0.0, 0.0)
             return
         self.blocked_since = None
         tx, ty = self.path[0]
@@ -130,8 +129,8 @@ class Driver:
                 sim.command_velocity(self.index, 0.0, 0.0)
                 self._finished(now, status)
             return
-        error = math.atan2(math.sin(math.atan2(ty - pose.y, tx - pose.x) - pose.heading),
-                           math.cos(math.atan2(ty - pose.y, tx - pose.x) - pose.heading))
+        off = math.atan2(ty - pose.y, tx - pose.x) - pose.heading
+        error = math.atan2(math.sin(off), math.cos(off))  # -pi .. pi
         limits = sim.world.robot
         angular = max(-limits.max_angular, min(limits.max_angular, 3.0 * error))
         linear = 0.0 if abs(error) > 0.35 else min(limits.max_linear, 1.5 * distance)
@@ -227,7 +226,6 @@ class FleetRun:
                 now = run.sim.time
                 if robot in index and what in ROBOT_COMMANDS:
                     run.drivers[index[robot]].command(what, now)
-                    run.status[index[robot]].commands.append((now, what))
                 elif name in DOOR_COMMANDS and run.door is not None:
                     run.door.command(name, now)
                 return True
