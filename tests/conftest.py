@@ -25,16 +25,46 @@ def pytest_configure(config: pytest.Config) -> None:
     os.unsetenv("COLUMNS")
 
 
+# The tests that start middleware, nodes, browsers or simulations paced in real time: with
+# pytest-xdist (`-n 2 --dist loadgroup`, pyproject's addopts) they all run in one worker, one at a
+# time as without xdist (their ROS domains and ports are those of one process), while the other
+# worker takes the tests that only compute.
+MIDDLEWARE = {
+    "test_belief", "test_boundary_ros", "test_build", "test_codegen_ros", "test_docs", "test_faults_ros",
+    "test_fleet_ros", "test_fleet_world", "test_fleet_world_ros", "test_live_server", "test_live_view",
+    "test_readme", "test_ros1", "test_ros2", "test_ros_support", "test_runtime", "test_sim", "test_sim_ros",
+    "test_sim_view", "test_vscode_extension",
+}
+_oracle_lines: list[str] = []  # the oracle's summary, as the xdist workers hand it over
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.module is not None and item.module.__name__ in MIDDLEWARE:
+            item.add_marker(pytest.mark.xdist_group("middleware"))
+
+
+def _oracle_summary() -> list[str]:
+    oracle = sys.modules.get("test_oracle")
+    return oracle.summary() if oracle is not None else []
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node: Any, error: Any) -> None:
+    """A pytest-xdist worker ended: keep what it saw of the oracle."""
+    _oracle_lines.extend(getattr(node, "workeroutput", {}).get("oracle", []))
+
+
 def pytest_terminal_summary(terminalreporter: Any) -> None:
     """What the random-model oracle met (tests/test_oracle.py), when it ran."""
-    oracle = sys.modules.get("test_oracle")
-    for line in oracle.summary() if oracle is not None else []:
+    for line in _oracle_lines + _oracle_summary():
         terminalreporter.write_line(line)
 
 
 def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
     """A process a test started that is still running at the end fails the run."""
     if hasattr(session.config, "workerinput"):
+        session.config.workeroutput["oracle"] = _oracle_summary()  # type: ignore[attr-defined]
         return  # a pytest-xdist worker: the controller checks, once
     left = strays.strays(os.environ[strays.MARK])
     if left:

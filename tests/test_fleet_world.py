@@ -54,8 +54,9 @@ def test_a_fleet_of_another_size_than_the_model_is_refused(capsys: pytest.Captur
     assert "the model's fleet has 3 robots (bot1, bot2, bot3) and 4 were asked for" in capsys.readouterr().err
     with pytest.raises(FleetMisfit, match="has 3 robots"):
         FleetRun(load_world(WORLD), module_of(ROOT / "examples/warehouse.rscd"), 2)
-    code = main(["sim", str(WORLD), str(ROOT / "examples/warehouse.rscd")])  # ROS: not yet
-    assert code == 2 and "runs without middleware so far: add --ros none" in capsys.readouterr().err
+    code = main(["sim", str(WORLD), str(ROOT / "examples/warehouse.rscd"), "--ros", "2", "--robots", "2"])
+    assert code == 2  # before any ROS process starts
+    assert "the model's fleet has 3 robots (bot1, bot2, bot3) and 2 were asked for" in capsys.readouterr().err
 
 
 def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
@@ -73,7 +74,7 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
     assert len(stopped) == 1 and stopped[0].tasks == 0
     field = next(f[0] for f in run.coordinator.FIELDS if f[0].endswith("_" + stopped[0].name))
     assert getattr(run.coordinator, field) in ("stopped_out2", "to_out2")
-    assert re.search(rf"{stopped[0].name} in c[12] \((stopped|driving)\)", report.why), report.why
+    assert re.search(rf"{stopped[0].name} in c[12] \((stopped|driving) into c2, [\d.]+ m from \(6.4, 3.3\)\)", report.why), report.why
     assert stopped[0].stops >= 2
     assert report.collisions == 0
 

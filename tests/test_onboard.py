@@ -41,6 +41,9 @@ class Twist:
     def get_fields_and_field_types() -> dict[str, str]:
         return {"linear": "geometry_msgs/Vector3", "angular": "geometry_msgs/Vector3"}
 
+    def __repr__(self) -> str:  # the test ids: the same in every pytest-xdist worker
+        return f"Twist({self.linear.x!r}, {self.angular.z!r})"
+
 
 class Int16:  # ROS 1 style: slots and slot types
     __slots__ = ("data",)

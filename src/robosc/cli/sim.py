@@ -18,6 +18,9 @@ if TYPE_CHECKING:
     from robosc.sim.run import Report
 
 
+FLEET_SECONDS = 300.0  # a fleet's default time-out: simulated seconds per robot and task
+
+
 @click.command()
 @click.argument("world_file", metavar="WORLD", type=click.Path())
 @click.argument("model", type=click.Path())
@@ -45,9 +48,9 @@ if TYPE_CHECKING:
 @click.option(
     "--timeout",
     type=click.FloatRange(min=0.0, min_open=True, max=86400.0),
-    default=300.0,
-    show_default=True,
-    help="Seconds of simulated time before the run counts as failed.",
+    default=None,
+    help="Seconds of simulated time before the run counts as failed (default: 300; in a fleet's world, "
+    "300 per robot and task).",
 )
 @click.option(
     "--speed",
@@ -82,7 +85,7 @@ def sim(
     ros: str,
     robots: int | None,
     tasks: int,
-    timeout: float,
+    timeout: float | None,
     speed: float,
     rate: float,
     seed: int,
@@ -103,7 +106,8 @@ def sim(
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     if world.fleet is not None:
-        _fleet(world, model, include, ros, robots, tasks, timeout, rate, seed)
+        _fleet(world, model, include, ros, robots, tasks, timeout, speed, rate, seed, record, domain)
+    timeout = timeout if timeout is not None else 300.0
     robots = robots or 1
     crowded = world.room_for(robots)
     if crowded is not None:
@@ -153,52 +157,76 @@ def _run(
 
 
 def _fleet(
-    world: Any, model: str, include: tuple[str, ...], ros: str, robots: int | None, tasks: int, timeout: float,
-    rate: float, seed: int,
+    world: Any, model: str, include: tuple[str, ...], ros: str, robots: int | None, tasks: int,
+    timeout: float | None, speed: float, rate: float, seed: int, record: str | None, domain: int | None,
 ) -> None:
-    """A fleet's world: the coordinator and a driver per robot in this process (exits)."""
-    if ros != "none":
-        raise input_problem(
-            f"{world.path}: a fleet's world runs without middleware so far: add --ros none "
-            "(the coordinator package on ROS against the simulated drivers is not done yet)"
-        )
+    """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
+    package and the simulator's node) or in this process (exits)."""
     from robosc.cli.table import boxed, terminal_width
     from robosc.runtime.simulator import load_module
-    from robosc.sim.fleet import FleetMisfit, FleetRun, instances
+    from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
+    from robosc.sim.fleet_ros import run_fleet_ros
+    from robosc.sim.session import SessionError
 
     _, plan = supervised(model, include, "a simulation")
     module = load_module(plan)
     count = len(instances(module))
+    robots = robots if robots is not None else count
+    limit = timeout if timeout is not None else FLEET_SECONDS * robots * tasks
+    if ros != "none":
+        _check_middleware(int(ros))
+    folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     try:
-        run = FleetRun(world, module, robots if robots is not None else count, seed=seed, rate=rate)
+        if ros == "none":
+            report = FleetRun(world, module, robots, seed=seed, rate=rate).run(tasks=tasks, timeout=limit)
+        else:
+            check_size(instances(module), robots)
+            report = run_fleet_ros(
+                world, plan, module, int(ros), robots, tasks=tasks, timeout=limit, speed=speed, rate=rate,
+                seed=seed, folder=folder, domain=domain, on_start=_say_where_fleet,
+            )
     except (FleetMisfit, ValueError) as exc:
         raise input_problem(f"{model}: {exc}") from None
-    report = run.run(tasks=tasks, timeout=timeout)
+    except SessionError as exc:
+        raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+    finally:
+        if not record:
+            shutil.rmtree(folder, ignore_errors=True)
     headers = ("robot", "tasks", "waiting", "distance", "closest robot", "stops", "collision")
     rows = []
-    for status, state, closest in zip(report.robots, run.sim.status, report.closest_robot, strict=True):
+    for status, state, closest in zip(report.robots, report.status, report.closest_robot, strict=True):
         hit = "-" if state.collided_at is None else f"at {state.collided_at:.1f} s"
         rows.append((
             status.name, str(status.tasks), f"{status.waiting:.0f} s", f"{state.distance:.1f} m", f"{closest:.2f} m",
             str(status.stops), hit,
         ))
-    title = f"{len(rows)} robot(s) in {world.name}, no middleware"
-    click.echo(boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width()))
+    where = "no middleware" if ros == "none" else f"ROS {ros}"
+    click.echo(boxed(headers, rows, title=f"{len(rows)} robot(s) in {world.name}, {where}",
+                     right=range(1, len(headers)), width=terminal_width()))
     verdict = "ok" if report.ok else "FAILED"
-    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated)")
+    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")
+    if record:
+        click.echo(f"recorded {folder} (the coordinator's package, its event log and the nodes' logs)")
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
+
+
+def _where(graph: object) -> tuple[str, int]:
+    env = getattr(graph, "env", {})
+    if getattr(graph, "ros", 2) == 1:
+        return f"ROS_MASTER_URI={env.get('ROS_MASTER_URI')} ROS_HOSTNAME=127.0.0.1", 1
+    return f"ROS_DOMAIN_ID={env.get('ROS_DOMAIN_ID')} ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST", 2
 
 
 def _say_where(graph: object) -> None:
     """Where the private graph is, so that the robots can be watched (robosc view) meanwhile."""
-    env = getattr(graph, "env", {})
-    if getattr(graph, "ros", 2) == 1:
-        where = f"ROS_MASTER_URI={env.get('ROS_MASTER_URI')} ROS_HOSTNAME=127.0.0.1"
-        ros = 1
-    else:
-        where = f"ROS_DOMAIN_ID={env.get('ROS_DOMAIN_ID')} ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST"
-        ros = 2
+    where, ros = _where(graph)
     click.echo(f"robosc: the robots run on {where} (watch: {where} robosc view --ros {ros})", err=True)
+
+
+def _say_where_fleet(graph: object) -> None:
+    """Where a fleet's private graph is (its coordinator: namespace /fleet)."""
+    where, _ = _where(graph)
+    click.echo(f"robosc: the fleet runs on {where}, its coordinator in the namespace /fleet", err=True)
 
 
 def _check_middleware(ros: int) -> None:

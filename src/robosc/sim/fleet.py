@@ -23,11 +23,12 @@ told), or at the time-out.
 from __future__ import annotations
 
 import math
+import time
 import types
 from typing import Any
 
-from robosc.record import record
-from robosc.sim.simulation import Simulation
+from robosc.record import field, record
+from robosc.sim.simulation import Simulation, Status
 from robosc.sim.world import Fleet, Pose, World
 
 REACHED = 0.06  # metres from a waypoint that count as there
@@ -36,6 +37,10 @@ BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
 AHEAD = math.radians(25)  # half the angle the driver looks ahead in
 ROBOT_COMMANDS = ("go", "dock")
 DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
+# simulated seconds without a robot arriving at the end of a leg that end a run as a deadlock (the
+# coordinator's random choices can keep robots waiting for a while: the door opened and closed
+# again, robots docking, before the one that waits is chosen)
+STALL = 60.0
 
 
 class FleetMisfit(Exception):
@@ -195,80 +200,61 @@ class FleetReport:
     closest_robot: tuple[float, ...]  # per robot, metres between its edge and another robot's
     collisions: int
     ignored: int  # answers the coordinator has no event for
+    wall: float = 0.0  # seconds of real time (on ROS: from the first step)
+    folder: str = ""  # on ROS: where the package and the logs are
+    status: tuple[Status, ...] = field(default=(), compare=False, repr=False)  # the simulation's, per robot
 
 
-class FleetRun:
-    """The generated coordinator (``module``) commanding ``world``'s fleet in this process."""
+class FleetWorld:
+    """The world's side of a fleet: the simulation, a driver per robot and the door. Commands
+    come in by the coordinator's names (``bot1.go``, ``open_door``); each ``step()`` returns the
+    answers the robots and the door gave (``bot1.arrived``, ``door_opened``)."""
 
-    def __init__(self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0) -> None:
+    def __init__(self, world: World, names: list[str]) -> None:
         if world.fleet is None:
             raise FleetMisfit(f"{world.path} is not a fleet's world (it has no 'fleet')")
-        names = instances(module)
-        if len(names) != robots:
-            raise FleetMisfit(
-                f"the model's fleet has {len(names)} robots ({', '.join(names) or 'none'}) and {robots} were asked for"
-            )
-        self.sim = Simulation(world, robots)
+        self.sim = Simulation(world, len(names))
         self.fleet = world.fleet
         self.names = names
-        self.rate = rate
-        self.drivers = [Driver(i, world.fleet, world.start(i)) for i in range(robots)]
+        self.index = {name: i for i, name in enumerate(names)}
+        self.drivers = [Driver(i, world.fleet, world.start(i)) for i in range(len(names))]
         self.status = [FleetStatus(name) for name in names]
         self.door = DoorSim(world.fleet.door.seconds) if world.fleet.door is not None else None
-        self.ignored = 0
-        self.scans: list[list[float] | None] = [None] * robots
-        run = self
-        index = {name: i for i, name in enumerate(names)}
+        self.scans: list[list[float] | None] = [None] * len(names)
+        self.progress = 0.0  # when a robot last arrived at the end of a leg of its task
 
-        class Coordinator(module.Robot):  # type: ignore[name-defined, misc]
-            def send(self, name: str, data: Any) -> bool:
-                robot, _, what = name.rpartition(".")
-                now = run.sim.time
-                if robot in index and what in ROBOT_COMMANDS:
-                    run.drivers[index[robot]].command(what, now)
-                elif name in DOOR_COMMANDS and run.door is not None:
-                    run.door.command(name, now)
-                return True
+    def command(self, name: str) -> None:
+        """A command of the coordinator's (one it has no driver for does nothing)."""
+        robot, _, what = name.rpartition(".")
+        now = self.sim.time
+        if robot in self.index and what in ROBOT_COMMANDS:
+            self.drivers[self.index[robot]].command(what, now)
+        elif name in DOOR_COMMANDS and self.door is not None:
+            self.door.command(name, now)
 
-        # the simulated robots and the door start where the model starts them (a simulation's
-        # trust_initial_state): nothing to confirm
-        self.coordinator = Coordinator(seed=seed, warn=lambda text: None, clock=lambda: run.sim.time,
-                                       wait_for_data=False, confirmed=True)
-        self._next_tick = 0.0
-        self._progress = 0.0  # when a robot last arrived at the end of a leg of its task
-
-    def step(self) -> None:
+    def step(self) -> list[str]:
         sim = self.sim
         before = [(b.pose.x, b.pose.y) for b in sim.bodies]
         for message in sim.step():
             if message.role == "scan":
                 self.scans[message.robot] = message.value
         now = sim.time
+        answers = []
         for i, (driver, status) in enumerate(zip(self.drivers, self.status, strict=True)):
             driver.step(sim, self.scans[i], now, status)
             pose = sim.bodies[i].pose
             if math.hypot(pose.x - before[i][0], pose.y - before[i][1]) <= 1e-4 and driver.doing in ("idle", "stopped"):
                 status.waiting += sim.world.step
-            for answer in driver.answers:
-                self._deliver(f"{self.names[i]}.{answer}")
+            if "arrived" in driver.answers:  # a leg of a task done (charging, the door, stopping again: none)
+                self.progress = now
+            answers += [f"{self.names[i]}.{answer}" for answer in driver.answers]
             driver.answers.clear()
         if self.door is not None:
             self.door.step(now)
-            for answer in self.door.answers:
-                self._deliver(answer)
+            answers += self.door.answers
             self.door.answers.clear()
             self._doorway()
-        if now + 1e-9 >= self._next_tick:
-            self._next_tick += 1.0 / self.rate
-            self.coordinator.tick()
-
-    def _deliver(self, name: str) -> None:
-        if name.endswith(".arrived"):  # a leg of a task done (charging, the door, stopping again: none)
-            self._progress = self.sim.time
-        if name in self.coordinator.EVENT:
-            self.coordinator.deliver(name)
-        else:
-            self.ignored += 1  # the model has no such answer (a zero-time model has no arrived)
+        return answers
 
     def _doorway(self) -> None:
         door = self.fleet.door
@@ -294,24 +280,82 @@ class FleetRun:
             return False, f"collision: {said} at t = {sim.time:.1f} s"
         if all(s.tasks >= tasks for s in self.status):
             return True, f"every robot did its {tasks} task(s)"
-        if sim.time - self._progress >= stall:
-            where = ", ".join(
-                f"{name} in {self.fleet.cell(b.pose.x, b.pose.y) or 'no cell'} ({d.doing})"
-                for name, b, d in zip(self.names, sim.bodies, self.drivers, strict=True)
-            )
+        if sim.time - self.progress >= stall:
+            where = "; ".join(self.whereabouts(i) for i in range(len(self.names)))
             return False, f"deadlock: no robot got on with its task for {stall:g} s: {where}"
         if sim.time >= timeout - 1e-9:
             return False, f"timeout: {timeout:g} s of simulated time"
         return None
 
-    def run(self, tasks: int = 1, timeout: float = 600.0, stall: float = 30.0) -> FleetReport:
-        while True:
-            self.step()
-            ended = self.verdict(tasks, timeout, stall)
-            if ended is not None:
-                break
+    def whereabouts(self, i: int) -> str:
+        """Where robot ``i`` is and what it waits for: its cell, what its driver does, the cell
+        its next leg ends in, and how far its next point is while it drives."""
+        pose, driver = self.sim.bodies[i].pose, self.drivers[i]
+        here = self.fleet.cell(pose.x, pose.y) or "no cell"
+        told = f"{self.names[i]} in {here} ({driver.doing}"
+        if driver.path:
+            x, y = driver.path[-1]
+            told += f" into {self.fleet.cell(x, y) or 'no cell'}"
+            x, y = driver.path[0]
+            told += f", {math.hypot(x - pose.x, y - pose.y):.2f} m from ({x:g}, {y:g})"
+        elif driver.doing == "idle":
+            x, y = self.fleet.point(self.fleet.task[driver.leg][-1], driver.home)
+            told += f", its next move into {self.fleet.cell(x, y) or 'no cell'}"
+        return told + ")"
+
+    def report(self, ended: tuple[bool, str], ignored: int, wall: float = 0.0, folder: str = "") -> FleetReport:
         return FleetReport(
             ended[0], ended[1], tuple(self.status), self.sim.time,
             tuple(s.closest_robot for s in self.sim.status),
-            sum(1 for s in self.sim.status if s.collided_at is not None), self.ignored,
+            sum(1 for s in self.sim.status if s.collided_at is not None), ignored, wall, folder,
+            tuple(self.sim.status),
         )
+
+
+def check_size(names: list[str], robots: int) -> None:
+    if len(names) != robots:
+        raise FleetMisfit(
+            f"the model's fleet has {len(names)} robots ({', '.join(names) or 'none'}) and {robots} were asked for"
+        )
+
+
+class FleetRun:
+    """The generated coordinator (``module``) commanding ``world``'s fleet in this process."""
+
+    def __init__(self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0) -> None:
+        names = instances(module)
+        check_size(names, robots)
+        self.world = FleetWorld(world, names)
+        self.sim = self.world.sim
+        self.rate = rate
+        self.ignored = 0
+        run = self
+
+        class Coordinator(module.Robot):  # type: ignore[name-defined, misc]
+            def send(self, name: str, data: Any) -> bool:
+                run.world.command(name)
+                return True
+
+        # the simulated robots and the door start where the model starts them (a simulation's
+        # trust_initial_state): nothing to confirm
+        self.coordinator = Coordinator(seed=seed, warn=lambda text: None, clock=lambda: run.sim.time,
+                                       wait_for_data=False, confirmed=True)
+        self._next_tick = 0.0
+
+    def step(self) -> None:
+        for name in self.world.step():
+            if name in self.coordinator.EVENT:
+                self.coordinator.deliver(name)
+            else:
+                self.ignored += 1  # the model has no such answer (a zero-time model has no arrived)
+        if self.sim.time + 1e-9 >= self._next_tick:
+            self._next_tick += 1.0 / self.rate
+            self.coordinator.tick()
+
+    def run(self, tasks: int = 1, timeout: float = 600.0, stall: float = STALL) -> FleetReport:
+        started = time.monotonic()
+        while True:
+            self.step()
+            ended = self.world.verdict(tasks, timeout, stall)
+            if ended is not None:
+                return self.world.report(ended, self.ignored, time.monotonic() - started)

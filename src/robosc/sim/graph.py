@@ -103,18 +103,22 @@ class Graph:
         env = {**self.env, "PYTHONPATH": str(folder)}
         return Bridge(self._start("simulator", [python, "-m", f"{BRIDGE_PACKAGE}.ros{self.ros}"], env, pipe=True))
 
-    def controller(self, package: Path, robot: str, params: dict[str, object]) -> subprocess.Popen[bytes]:
-        """One instance of the generated controller package, in namespace ``/robot``."""
+    def controller(
+        self, package: Path, robot: str, params: dict[str, object], process: str | None = None
+    ) -> subprocess.Popen[bytes]:
+        """One instance of the generated controller package, in namespace ``/robot``; its
+        process is named ``process`` (default: ``robot``) in the logs and in ``failed()``."""
+        process = process or robot
         if self.ros == 1:
             script = next((package / "scripts").glob("*_node"))
             args = [f"__ns:=/{robot}", *(f"_{k}:={_text(v)}" for k, v in params.items())]
-            return self._start(robot, [self.ros1_python, str(script), *args], self.env)
+            return self._start(process, [self.ros1_python, str(script), *args], self.env)
         module = next(p.name for p in package.iterdir() if (p / "node.py").exists())
         args = ["--ros-args", "-r", f"__ns:=/{robot}", "-p", "use_sim_time:=true"]
         for key, value in params.items():
             args += ["-p", f"{key}:={_text(value)}"]
         env = {**self.env, "PYTHONPATH": str(package)}
-        return self._start(robot, [sys.executable, "-m", f"{module}.node", *args], env)
+        return self._start(process, [sys.executable, "-m", f"{module}.node", *args], env)
 
     def failed(self, sim: object) -> str | None:
         """Why the run cannot go on: a process of the graph that ended (a controller killed or
@@ -122,7 +126,7 @@ class Graph:
         for name, process in self.processes:
             status = process.poll()
             if status is not None and name != "simulator":
-                what = "the controller of " + name if name.startswith("robot") else name
+                what = "the controller of " + name if name.startswith("robot") else "the " + name
                 how = f"killed by signal {-status}" if status < 0 else f"exit status {status}"
                 return f"{what} died at {getattr(sim, 'time', 0.0):.1f} s simulated ({how})"
         return None

@@ -7,6 +7,10 @@ simulation -> node:
   {"op": "clock", "t": seconds}
   {"op": "publish", "robot": i, "role": role, "value": ...}   (scan: ranges; line_correction: a number)
   {"op": "quit"}
+  a fleet's world (the coordinator's topics, every message std_msgs/Empty):
+  {"op": "setup", "robots": [], "topics": {}, "roles": [], "scan": {},
+   "fleet": {"commands": [[name, topic], ...], "answers": [[name, topic], ...]}}
+  {"op": "answer", "name": name}        (a robot or the door answers: publish on its topic)
 node -> simulation:
   {"op": "ready"}
   {"op": "peers", "robots": [connected roles of robot 0, ...]}
@@ -14,6 +18,9 @@ node -> simulation:
   {"op": "command", "robot": i, "role": "rotate_left" | "rotate_right", "value": degrees}
   {"op": "refused", "robot": i}        (the controller reported a refused command on 'blocked')
   {"op": "press", "robot": i, "pressed": true | false}   (the emergency stop button service)
+  a fleet's world:
+  {"op": "order", "name": name}         (the coordinator sent a command: bot1.go, open_door)
+  {"op": "peers", "robots": [[topics with the coordinator on the other end]]}
 """
 
 import json
@@ -110,6 +117,10 @@ class Setup(object):
         self.topics = dict(message["topics"])  # type: Dict[str, str]
         self.roles = [str(r) for r in message["roles"]]  # type: List[str]
         self.scan = dict(message["scan"])  # type: Dict[str, Any]
+        fleet = message.get("fleet") or {}
+        self.commands = [(str(n), str(t)) for n, t in fleet.get("commands", [])]  # type: List[Tuple[str, str]]
+        self.answers = [(str(n), str(t)) for n, t in fleet.get("answers", [])]  # type: List[Tuple[str, str]]
+        self.fleet = "fleet" in message
 
 
 def read_setup() -> Setup:
@@ -212,3 +223,45 @@ class Wiring(object):
             return subscriber_count(self.subscriptions[i][role]) > 0
 
         return peer_counts(self.setup.robots, connected, self.setup.roles)
+
+
+class FleetWiring(object):
+    """A fleet's world: the robots' drivers and the door, as the coordinator meets them under
+    its namespace; a subscription per command and a publisher per answer (std_msgs/Empty)."""
+
+    def __init__(
+        self,
+        setup: Setup,
+        channel: Channel,
+        publisher: Callable[[str, Any], Any],
+        subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
+    ) -> None:
+        from std_msgs.msg import Empty
+
+        self.empty = Empty
+        self.publishers = dict((name, (topic, publisher(topic, Empty))) for name, topic in setup.answers)
+        self.subscriptions = dict(
+            (name, (topic, subscriber(topic, Empty, self._order(channel, name)))) for name, topic in setup.commands
+        )
+
+    @staticmethod
+    def _order(channel: Channel, name: str) -> Callable[[Any], None]:
+        return lambda m: channel.send("order", name=name)
+
+    def handler(self, clock: Callable[[float], None], stamp: Callable[[Any, float], None]) -> Callable[[Dict[str, Any]], None]:
+        def handle(message: Dict[str, Any]) -> None:
+            op = message.get("op")
+            if op == "clock":
+                clock(float(message["t"]))
+            elif op == "answer":
+                found = self.publishers.get(str(message.get("name")))
+                if found is not None:
+                    found[1].publish(self.empty())
+
+        return handle
+
+    def peers(self, publisher_count: Callable[[Any], int], subscriber_count: Callable[[Any], int]) -> List[List[str]]:
+        """The topics that have the coordinator on the other end (as one robot's list)."""
+        connected = [topic for topic, p in self.publishers.values() if publisher_count(p) > 0]
+        connected += [topic for topic, s in self.subscriptions.values() if subscriber_count(s) > 0]
+        return [connected]

@@ -3,7 +3,7 @@
 import threading
 from typing import Any, Callable
 
-from .protocol import Channel, Wiring, read_setup
+from .protocol import Channel, FleetWiring, Wiring, read_setup
 
 
 def main() -> None:
@@ -25,13 +25,12 @@ def main() -> None:
 
         return rospy.Service(name, SetBool, serve)
 
-    wiring = Wiring(
-        setup,
-        channel,
-        lambda name, kind: rospy.Publisher(name, kind, queue_size=10),
-        lambda name, kind, callback: rospy.Subscriber(name, kind, callback),
-        button,
-    )
+    publisher = lambda name, kind: rospy.Publisher(name, kind, queue_size=10)  # noqa: E731
+    subscriber = lambda name, kind, callback: rospy.Subscriber(name, kind, callback)  # noqa: E731
+    if setup.fleet:
+        wiring = FleetWiring(setup, channel, publisher, subscriber)  # type: Any
+    else:
+        wiring = Wiring(setup, channel, publisher, subscriber, button)
 
     def stamp(header: Any, t: float) -> None:
         header.stamp = rospy.Time.from_sec(t)

@@ -4,7 +4,7 @@ import sys
 import threading
 from typing import Any, Callable
 
-from .protocol import Channel, Wiring, read_setup, sec_nanosec
+from .protocol import Channel, FleetWiring, Wiring, read_setup, sec_nanosec
 
 
 def main() -> None:
@@ -31,13 +31,12 @@ def main() -> None:
 
         return node.create_service(SetBool, name, serve)
 
-    wiring = Wiring(
-        setup,
-        channel,
-        lambda name, kind: node.create_publisher(kind, name, reliable),
-        lambda name, kind, callback: node.create_subscription(kind, name, callback, reliable),
-        button,
-    )
+    publisher = lambda name, kind: node.create_publisher(kind, name, reliable)  # noqa: E731
+    subscriber = lambda name, kind, callback: node.create_subscription(kind, name, callback, reliable)  # noqa: E731
+    if setup.fleet:
+        wiring = FleetWiring(setup, channel, publisher, subscriber)  # type: Any
+    else:
+        wiring = Wiring(setup, channel, publisher, subscriber, button)
 
     def stamp(header: Any, t: float) -> None:
         header.stamp.sec, header.stamp.nanosec = sec_nanosec(t)

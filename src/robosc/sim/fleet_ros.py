@@ -1,0 +1,168 @@
+"""A fleet in one world on ROS, as it would be deployed: the generated coordinator package (one
+node, in namespace ``/fleet``) on a private graph (robosc.sim.graph), and the world's robots and
+door behind the simulator's node, which offers under that namespace what each robot's driver
+and the door offer: a topic per command it obeys (``/fleet/bot1/go``, ``/fleet/open_door``) and
+a topic per answer it gives (``/fleet/bot1/arrived``, ``/fleet/door_opened``), std_msgs/Empty,
+reliable. The simulation (robosc.sim.fleet.FleetWorld) runs in this process and owns simulated
+time: ``/clock`` advances at every step, and the coordinator runs on it (``use_sim_time``).
+"""
+
+from __future__ import annotations
+
+import queue
+import tempfile
+import time
+import types
+from collections.abc import Callable
+from pathlib import Path
+
+from robosc.codegen.ros import generate, package_name, ros_name
+from robosc.runtime.plan import Plan
+from robosc.sim import session
+from robosc.sim.fleet import (
+    DOOR_COMMANDS,
+    ROBOT_COMMANDS,
+    STALL,
+    FleetMisfit,
+    FleetReport,
+    FleetWorld,
+    check_size,
+    instances,
+)
+from robosc.sim.graph import Graph
+from robosc.sim.world import World
+
+NAMESPACE = "fleet"  # the coordinator's namespace on the simulation's graph
+ROBOT_ANSWERS = ("arrived", "stopped", "charged")
+DOOR_ANSWERS = ("door_opened", "door_closed")
+
+# (direction, name, perf_counter seconds): an answer published ("out"), a command come ("in")
+Trace = Callable[[str, str, float], None]
+
+
+def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[list[list[str]], list[list[str]]]:
+    """The coordinator's topics the world's side has: ([[command, topic]], [[answer, topic]]),
+    each a communication of the model's with the world's name for it. Raises FleetMisfit for
+    one that is not an Empty message (the simulated drivers send and take no data)."""
+    robots = set(names)
+    commands: list[list[str]] = []
+    answers: list[list[str]] = []
+    for c in plan.communications:
+        robot, _, what = c.name.rpartition(".")
+        command = (robot in robots and what in ROBOT_COMMANDS) or c.name in DOOR_COMMANDS
+        answer = (robot in robots and what in ROBOT_ANSWERS) or c.name in DOOR_ANSWERS
+        if not command and not answer:
+            continue
+        if c.kind not in ("incoming", "outgoing") or c.data_kind != "none" or c.interface is not None:
+            raise FleetMisfit(f"{c.name} must be a message 'with type: none' for the fleet's world ({c.kind}, {c.data_kind})")
+        pair = [c.name, f"/{namespace}/{ros_name(c, True).lstrip('/')}"]
+        (commands if command and c.kind == "incoming" else answers).append(pair)
+    return commands, answers
+
+
+def run_fleet_ros(
+    world: World,
+    plan: Plan,
+    module: types.ModuleType,
+    ros: int,
+    robots: int,
+    tasks: int = 1,
+    timeout: float = 600.0,
+    stall: float = STALL,
+    speed: float = 1.0,
+    rate: float = 10.0,
+    seed: int = 0,
+    folder: Path | None = None,
+    domain: int | None = None,
+    on_start: Callable[[object], None] | None = None,
+    trace: Trace | None = None,
+) -> FleetReport:
+    """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
+    ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
+    runs once the nodes are started; ``trace`` sees every command come and answer sent."""
+    names = instances(module)
+    check_size(names, robots)
+    commands, answers = wiring(plan, names)
+    fleet = FleetWorld(world, names)
+    if folder is None:
+        folder = Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
+    folder.mkdir(parents=True, exist_ok=True)
+    package = folder / f"{package_name(plan)}_ros{ros}"
+    generate(plan, ros, "controller", package, None, relative=True)
+    (folder / "events").mkdir(exist_ok=True)
+    graph = Graph(ros, folder, domain)
+    bridge = None
+    try:
+        bridge = graph.bridge()
+        bridge.send("setup", robots=[], topics={}, roles=[], scan={}, fleet={"commands": commands, "answers": answers})
+        session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
+        params: dict[str, object] = {
+            "rate": float(rate),
+            "seed": seed,
+            "event_log": folder / "events" / "coordinator.jsonl",
+            # the simulation makes the robots and the door where the model starts them
+            "trust_initial_state": True,
+        }
+        graph.controller(package, NAMESPACE, params, process="coordinator")
+        if on_start is not None:
+            on_start(graph)
+        topics = [topic for _, topic in commands + answers]
+        session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, "the coordinator to connect")
+        started = time.monotonic()
+        ended, ignored = _run(fleet, bridge, graph, {n for n, _ in answers}, tasks, timeout, stall, speed, trace)
+        wall = time.monotonic() - started
+        return fleet.report(ended, ignored, wall, str(folder))
+    except session.SessionError as exc:
+        raise session.SessionError(f"{exc}\n{graph.output()}") from None
+    finally:
+        if bridge is not None:
+            bridge.close()
+        graph.stop()
+
+
+def _run(
+    fleet: FleetWorld,
+    bridge: session.Bridge,
+    graph: Graph,
+    answered: set[str],
+    tasks: int,
+    timeout: float,
+    stall: float,
+    speed: float,
+    trace: Trace | None,
+) -> tuple[tuple[bool, str], int]:
+    """Steps the world at ``speed`` times real time, passing commands in and answers out."""
+    sim = fleet.sim
+    ignored = 0
+    started = time.monotonic()
+    bridge.send("clock", t=sim.time)
+    while True:
+        while True:  # the commands that came since the last step
+            try:
+                message = bridge.lines.get_nowait()
+            except queue.Empty:
+                break
+            if message is None:
+                return (False, "the simulator's node ended"), ignored
+            if message.get("op") == "order":
+                if trace is not None:
+                    trace("in", str(message.get("name")), time.perf_counter())
+                fleet.command(str(message.get("name")))
+        died = graph.failed(sim)
+        if died is not None:
+            return (False, died), ignored
+        out = fleet.step()
+        bridge.send("clock", t=sim.time)
+        for name in out:
+            if name in answered:
+                bridge.send("answer", name=name)
+                if trace is not None:
+                    trace("out", name, time.perf_counter())
+            else:
+                ignored += 1  # the model has no such answer
+        ended = fleet.verdict(tasks, timeout, stall)
+        if ended is not None:
+            return ended, ignored
+        delay = started + sim.time / speed - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)

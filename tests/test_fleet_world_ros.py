@@ -1,0 +1,89 @@
+"""A fleet in one world on real middleware, as it would be deployed: `robosc sim` on the
+warehouse's world starts the generated coordinator package (one node, namespace /fleet) and the
+simulator's node, which offers each robot's driver and the door under that namespace; the
+coordinator runs on the simulation's /clock. Every robot does its task, none touches another,
+a wall or the door, and every command the coordinator logged was obeyed and answered over ROS."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from ros_support import new_domain, ros1_available, ros2_available, unavailable
+
+pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
+
+from robosc.api import plan_supervisor, synthesize_file
+from robosc.cli.main import main
+from robosc.runtime.simulator import load_module
+from robosc.sim.fleet_ros import run_fleet_ros, wiring
+from robosc.sim.world import load_world
+
+ROOT = Path(__file__).resolve().parent.parent
+WORLD = ROOT / "examples/worlds/warehouse.yaml"
+MODEL = ROOT / "examples/warehouse.rscd"
+LEGS = 8  # the warehouse task's moves
+
+
+def logged(folder: Path) -> list[dict[str, object]]:
+    return [json.loads(line) for line in (folder / "events" / "coordinator.jsonl").read_text().splitlines()]
+
+
+def check_answered(events: list[dict[str, object]], robots: tuple[str, ...], simulated: float) -> None:
+    """Each robot was told to go and answered over ROS: a go, then its arrived (or stopped),
+    before the next go; the legs of at least one task arrived (the run may end before the
+    coordinator took the last robot's last answer); the log is stamped in simulated seconds."""
+    names = [str(e["event"]) for e in events]
+    arrived = 0
+    for robot in robots:
+        mine = [n.rpartition(".")[2] for n in names if n.startswith(robot + ".") and not n.endswith(("dock", "charged"))]
+        assert mine.count("arrived") >= LEGS - 1, (robot, mine)
+        arrived += min(LEGS, mine.count("arrived"))
+        moving = False
+        for what in mine:
+            if what == "go":
+                assert not moving, (robot, mine)
+                moving = True
+            elif what in ("arrived", "stopped"):
+                assert moving, (robot, mine)
+                moving = False
+    assert arrived >= LEGS * len(robots) - 1
+    times = [float(e["time"]) for e in events]  # type: ignore[arg-type]
+    assert times == sorted(times) and times[0] >= 0 and times[-1] <= simulated + 0.5
+
+
+def test_wiring_is_the_coordinators_topics_under_its_namespace() -> None:
+    plan = plan_supervisor(synthesize_file(MODEL))
+    commands, answers = wiring(plan, ["bot1", "bot2", "bot3"])
+    assert ["bot2.go", "/fleet/bot2/go"] in commands and ["open_door", "/fleet/open_door"] in commands
+    assert ["bot3.arrived", "/fleet/bot3/arrived"] in answers and ["door_closed", "/fleet/door_closed"] in answers
+    assert len(commands) == 3 * 2 + 2 and len(answers) == 3 * 3 + 2
+
+
+def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    if not ros2_available():
+        unavailable("ROS 2 (pip install '.[ros2]')")
+    folder = tmp_path / "run"
+    args = ["sim", str(WORLD), str(MODEL), "--ros", "2", "--speed", "10", "--domain", str(new_domain())]
+    code = main([*args, "--record", str(folder)])
+    out = capsys.readouterr().out
+    assert code == 0, out + "\n" + "\n".join(p.read_text()[-3000:] for p in (folder / "logs").glob("*.log"))
+    assert "3 robot(s) in warehouse, ROS 2" in out and "ok: every robot did its 1 task(s)" in out
+    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
+    assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out
+    simulated = float(re.search(r"\(([\d.]+) s simulated", out).group(1))  # type: ignore[union-attr]
+    check_answered(logged(folder), ("bot1", "bot2", "bot3"), simulated)
+
+
+def test_the_warehouse_fleet_runs_on_ros1(tmp_path: Path) -> None:
+    if not ros1_available():
+        unavailable("ROS 1 (Debian's python3-rospy, python3-rosmaster)")
+    plan = plan_supervisor(synthesize_file(MODEL))
+    report = run_fleet_ros(load_world(WORLD), plan, load_module(plan), 1, 3, speed=10.0, folder=tmp_path)
+    assert report.ok, report.why + "\n" + "\n".join(p.read_text()[-3000:] for p in (tmp_path / "logs").glob("*.log"))
+    assert report.collisions == 0 and report.ignored == 0
+    assert all(s.tasks >= 1 for s in report.robots)
+    check_answered(logged(tmp_path), ("bot1", "bot2", "bot3"), report.simulated)
