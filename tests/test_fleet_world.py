@@ -10,6 +10,7 @@ import pytest
 
 from robosc.api import check_text, plan_supervisor, synthesize_model
 from robosc.cli.main import main
+from robosc.cli.sim import fleet_table
 from robosc.runtime.simulator import load_module
 from robosc.sim.fleet import FleetMisfit, FleetRun
 from robosc.sim.world import WorldError, load_world
@@ -33,9 +34,9 @@ def test_the_warehouse_fleet_does_its_tasks_in_one_world_without_touching(capsys
     out = capsys.readouterr().out
     assert code == 0, out
     assert "ok: every robot did its 1 task(s)" in out
-    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
+    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +([\d.]+) m │ +\d+ │ +- │", out)
     assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out
-    assert all(int(tasks) >= 1 and float(closest) > 0.0 for _, tasks, closest in rows), out
+    assert all(int(tasks) >= 1 and float(robot) > 0.0 and float(person) > 0.0 for _, tasks, robot, person in rows), out
 
 
 def test_the_zero_time_warehouse_collides_in_the_same_world() -> None:
@@ -82,9 +83,11 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("change", "line", "message"),
     [
-        (("shared: true", "shared: false"), 29, "a fleet's world is shared: add 'shared: true'"),
-        (("    - [c2]\n", "    - [c9]\n"), 38, "unknown waypoint 'c9' (the waypoints, home, lane)"),
-        (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 32, "'home' is each robot's own: it cannot be a waypoint"),
+        (("shared: true", "shared: false"), 31, "a fleet's world is shared: add 'shared: true'"),
+        (("    - [c2]\n", "    - [c9]\n"), 40, "unknown waypoint 'c9' (the waypoints, home, lane)"),
+        (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 34, "'home' is each robot's own: it cannot be a waypoint"),
+        (("[6.4, 3.3, 20]", "[6.4, 3.3, 20, 1]"), 62, "a point of the walk is [x, y] or [x, y, seconds standing there]"),
+        (("    speed: 0.6\n", "    speed: -1\n"), 57, "person speed"),
     ],
 )
 def test_a_fleet_world_is_checked_with_file_line_and_column(
@@ -97,3 +100,31 @@ def test_a_fleet_world_is_checked_with_file_line_and_column(
     with pytest.raises(WorldError) as caught:
         load_world(path)
     assert caught.value.line == line and message in caught.value.message, str(caught.value)
+
+
+def test_robots_keep_out_of_the_cells_at_and_next_to_a_person_standing_in_the_aisle(tmp_path: Path) -> None:
+    """A person stands in the aisle's second cell from the start for 30 s, then leaves by the
+    side way: the detector says so, no robot enters that cell or the cells next to it (the
+    aisle's three) while the person is there, none touches the person, and every task is done
+    afterwards; the table gives each robot's closest approach to the person."""
+    text = WORLD.read_text()
+    text = text[: text.index("  person:")] + (
+        "  person:\n    walk:\n      - [6.4, 3.3, 30]\n      - [6.4, 4.8]\n      - [8.0, 5.6]\n"
+    )
+    world = tmp_path / "person.yaml"
+    world.write_text(text)
+    fleet = load_world(world).fleet
+    assert fleet is not None
+    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3)
+    report = run.run(tasks=1, timeout=900)
+    assert report.ok and report.collisions == 0, report.why
+    left = next(t for t, x, y in run.sim.person_trajectory if fleet.cell(x, y) != "c2")
+    assert left >= 30.0
+    aisle = {"c1", "c2", "c3"}
+    for status in run.sim.status:
+        assert all(fleet.cell(x, y) not in aisle for t, x, y, _ in status.trajectory if t < left)
+        assert any(fleet.cell(x, y) in aisle for t, x, y, _ in status.trajectory if t > left)
+        assert status.closest_person > 0.5  # no robot came near: a cell between them
+    out = fleet_table(report, "the person")
+    rows = re.findall(r"│ (bot\d) +│ +\d+ │ +\d+ s │ +[\d.]+ m │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
+    assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"] and all(float(r[1]) > 0.5 for r in rows), out

@@ -58,9 +58,11 @@ def check_answered(events: list[dict[str, object]], robots: tuple[str, ...], sim
 def test_wiring_is_the_coordinators_topics_under_its_namespace() -> None:
     plan = plan_supervisor(synthesize_file(MODEL))
     commands, answers = wiring(plan, ["bot1", "bot2", "bot3"])
-    assert ["bot2.go", "/fleet/bot2/go"] in commands and ["open_door", "/fleet/open_door"] in commands
-    assert ["bot3.arrived", "/fleet/bot3/arrived"] in answers and ["door_closed", "/fleet/door_closed"] in answers
-    assert len(commands) == 3 * 2 + 2 and len(answers) == 3 * 3 + 2
+    assert ["bot2.go", "/fleet/bot2/go", "none"] in commands and ["open_door", "/fleet/open_door", "none"] in commands
+    assert ["bot3.arrived", "/fleet/bot3/arrived", "none"] in answers
+    assert ["door_closed", "/fleet/door_closed", "none"] in answers
+    assert ["person_cell", "/fleet/person_cell", "string"] in answers  # the detector: the cell's name
+    assert len(commands) == 3 * 2 + 2 and len(answers) == 3 * 3 + 2 + 1
 
 
 def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -72,8 +74,8 @@ def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path,
     out = capsys.readouterr().out
     assert code == 0, out + "\n" + "\n".join(p.read_text()[-3000:] for p in (folder / "logs").glob("*.log"))
     assert "3 robot(s) in warehouse, ROS 2" in out and "ok: every robot did its 1 task(s)" in out
-    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
-    assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out
+    rows = re.findall(r"│ (bot\d) +│ +(\d+) │ +\d+ s │ +[\d.]+ m │ +([\d.]+) m │ +([\d.]+) m │ +\d+ │ +- │", out)
+    assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out  # with the closest approach to the person
     simulated = float(re.search(r"\(([\d.]+) s simulated", out).group(1))  # type: ignore[union-attr]
     check_answered(logged(folder), ("bot1", "bot2", "bot3"), simulated)
 

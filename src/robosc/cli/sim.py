@@ -162,7 +162,6 @@ def _fleet(
 ) -> None:
     """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
     package and the simulator's node) or in this process (exits)."""
-    from robosc.cli.table import boxed, terminal_width
     from robosc.runtime.simulator import load_module
     from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
     from robosc.sim.fleet_ros import run_fleet_ros
@@ -192,22 +191,34 @@ def _fleet(
     finally:
         if not record:
             shutil.rmtree(folder, ignore_errors=True)
-    headers = ("robot", "tasks", "waiting", "distance", "closest robot", "stops", "collision")
-    rows = []
-    for status, state, closest in zip(report.robots, report.status, report.closest_robot, strict=True):
-        hit = "-" if state.collided_at is None else f"at {state.collided_at:.1f} s"
-        rows.append((
-            status.name, str(status.tasks), f"{status.waiting:.0f} s", f"{state.distance:.1f} m", f"{closest:.2f} m",
-            str(status.stops), hit,
-        ))
     where = "no middleware" if ros == "none" else f"ROS {ros}"
-    click.echo(boxed(headers, rows, title=f"{len(rows)} robot(s) in {world.name}, {where}",
-                     right=range(1, len(headers)), width=terminal_width()))
+    click.echo(fleet_table(report, f"{len(report.robots)} robot(s) in {world.name}, {where}"))
     verdict = "ok" if report.ok else "FAILED"
     click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")
     if record:
         click.echo(f"recorded {folder} (the coordinator's package, its event log and the nodes' logs)")
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
+
+
+def fleet_table(report: Any, title: str) -> str:
+    """A fleet run's table: per robot its tasks, waiting, distance, closest approaches, stops
+    and collision."""
+    from robosc.cli.table import boxed, terminal_width
+
+    headers: tuple[str, ...] = ("robot", "tasks", "waiting", "distance", "closest robot", "stops", "collision")
+    if report.person:
+        headers = (*headers[:5], "closest person", *headers[5:])
+    rows = []
+    for status, state, closest in zip(report.robots, report.status, report.closest_robot, strict=True):
+        hit = "-" if state.collided_at is None else f"at {state.collided_at:.1f} s"
+        row = [
+            status.name, str(status.tasks), f"{status.waiting:.0f} s", f"{state.distance:.1f} m", f"{closest:.2f} m",
+            str(status.stops), hit,
+        ]
+        if report.person:
+            row.insert(5, f"{state.closest_person:.2f} m")
+        rows.append(tuple(row))
+    return boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width())
 
 
 def _where(graph: object) -> tuple[str, int]:

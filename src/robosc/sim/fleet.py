@@ -37,6 +37,7 @@ BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
 AHEAD = math.radians(25)  # half the angle the driver looks ahead in
 ROBOT_COMMANDS = ("go", "dock")
 DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
+PERSON_DETECTOR = "person_cell"  # the answer that says which cell the person is in
 # simulated seconds without a robot arriving at the end of a leg that end a run as a deadlock (the
 # coordinator's random choices can keep robots waiting for a while: the door opened and closed
 # again, robots docking, before the one that waits is chosen)
@@ -203,6 +204,7 @@ class FleetReport:
     wall: float = 0.0  # seconds of real time (on ROS: from the first step)
     folder: str = ""  # on ROS: where the package and the logs are
     status: tuple[Status, ...] = field(default=(), compare=False, repr=False)  # the simulation's, per robot
+    person: bool = False  # the world has a person (Status.closest_person: each robot's closest approach)
 
 
 class FleetWorld:
@@ -222,6 +224,7 @@ class FleetWorld:
         self.door = DoorSim(world.fleet.door.seconds) if world.fleet.door is not None else None
         self.scans: list[list[float] | None] = [None] * len(names)
         self.progress = 0.0  # when a robot last arrived at the end of a leg of its task
+        self.person_cell: str | None = None  # the cell the detector last said the person is in
 
     def command(self, name: str) -> None:
         """A command of the coordinator's (one it has no driver for does nothing)."""
@@ -232,14 +235,21 @@ class FleetWorld:
         elif name in DOOR_COMMANDS and self.door is not None:
             self.door.command(name, now)
 
-    def step(self) -> list[str]:
+    def step(self) -> list[tuple[str, Any]]:
+        """One step; the answers given in it, (name, data): data is None but for the person's
+        detector, which says the name of the cell the person is in ("" for none)."""
         sim = self.sim
         before = [(b.pose.x, b.pose.y) for b in sim.bodies]
         for message in sim.step():
             if message.role == "scan":
                 self.scans[message.robot] = message.value
         now = sim.time
-        answers = []
+        answers: list[tuple[str, Any]] = []
+        if sim.walker is not None:
+            cell = self.fleet.cell(*sim.person)
+            if cell != self.person_cell:
+                self.person_cell = cell
+                answers.append((PERSON_DETECTOR, cell))
         for i, (driver, status) in enumerate(zip(self.drivers, self.status, strict=True)):
             driver.step(sim, self.scans[i], now, status)
             pose = sim.bodies[i].pose
@@ -247,11 +257,11 @@ class FleetWorld:
                 status.waiting += sim.world.step
             if "arrived" in driver.answers:  # a leg of a task done (charging, the door, stopping again: none)
                 self.progress = now
-            answers += [f"{self.names[i]}.{answer}" for answer in driver.answers]
+            answers += [(f"{self.names[i]}.{answer}", None) for answer in driver.answers]
             driver.answers.clear()
         if self.door is not None:
             self.door.step(now)
-            answers += self.door.answers
+            answers += [(answer, None) for answer in self.door.answers]
             self.door.answers.clear()
             self._doorway()
         return answers
@@ -308,7 +318,7 @@ class FleetWorld:
             ended[0], ended[1], tuple(self.status), self.sim.time,
             tuple(s.closest_robot for s in self.sim.status),
             sum(1 for s in self.sim.status if s.collided_at is not None), ignored, wall, folder,
-            tuple(self.sim.status),
+            tuple(self.sim.status), self.sim.walker is not None,
         )
 
 
@@ -343,9 +353,9 @@ class FleetRun:
         self._next_tick = 0.0
 
     def step(self) -> None:
-        for name in self.world.step():
+        for name, data in self.world.step():
             if name in self.coordinator.EVENT:
-                self.coordinator.deliver(name)
+                self.coordinator.deliver(name, data)
             else:
                 self.ignored += 1  # the model has no such answer (a zero-time model has no arrived)
         if self.sim.time + 1e-9 >= self._next_tick:

@@ -21,6 +21,7 @@ from robosc.runtime.plan import Plan
 from robosc.sim import session
 from robosc.sim.fleet import (
     DOOR_COMMANDS,
+    PERSON_DETECTOR,
     ROBOT_COMMANDS,
     STALL,
     FleetMisfit,
@@ -41,9 +42,10 @@ Trace = Callable[[str, str, float], None]
 
 
 def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[list[list[str]], list[list[str]]]:
-    """The coordinator's topics the world's side has: ([[command, topic]], [[answer, topic]]),
-    each a communication of the model's with the world's name for it. Raises FleetMisfit for
-    one that is not an Empty message (the simulated drivers send and take no data)."""
+    """The coordinator's topics the world's side has: ([[command, topic, kind]], [[answer,
+    topic, kind]]), each a communication of the model's with the world's name for it; kind
+    "none" (std_msgs/Empty) or, for the person's detector, "string" (std_msgs/String). Raises
+    FleetMisfit for one of another type."""
     robots = set(names)
     commands: list[list[str]] = []
     answers: list[list[str]] = []
@@ -51,12 +53,19 @@ def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[li
         robot, _, what = c.name.rpartition(".")
         command = (robot in robots and what in ROBOT_COMMANDS) or c.name in DOOR_COMMANDS
         answer = (robot in robots and what in ROBOT_ANSWERS) or c.name in DOOR_ANSWERS
-        if not command and not answer:
+        detector = c.name == PERSON_DETECTOR
+        if not (command or answer or detector):
             continue
-        if c.kind not in ("incoming", "outgoing") or c.data_kind != "none" or c.interface is not None:
-            raise FleetMisfit(f"{c.name} must be a message 'with type: none' for the fleet's world ({c.kind}, {c.data_kind})")
-        pair = [c.name, f"/{namespace}/{ros_name(c, True).lstrip('/')}"]
-        (commands if command and c.kind == "incoming" else answers).append(pair)
+        kind = "string" if detector else "none"
+        if c.kind != ("incoming" if command else "outgoing") or c.data_kind != kind or c.interface is not None:
+            way = "an incoming" if command else "an outgoing"
+            typed = "a string or an enum from string" if detector else "none"
+            raise FleetMisfit(
+                f"{c.name} must be {way} message 'with type: {typed}' for the fleet's world "
+                f"(it is {c.kind}, {c.data_kind})"
+            )
+        entry = [c.name, f"/{namespace}/{ros_name(c, True).lstrip('/')}", kind]
+        (commands if command else answers).append(entry)
     return commands, answers
 
 
@@ -106,10 +115,10 @@ def run_fleet_ros(
         graph.controller(package, NAMESPACE, params, process="coordinator")
         if on_start is not None:
             on_start(graph)
-        topics = [topic for _, topic in commands + answers]
+        topics = [entry[1] for entry in commands + answers]
         session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, "the coordinator to connect")
         started = time.monotonic()
-        ended, ignored = _run(fleet, bridge, graph, {n for n, _ in answers}, tasks, timeout, stall, speed, trace)
+        ended, ignored = _run(fleet, bridge, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace)
         wall = time.monotonic() - started
         return fleet.report(ended, ignored, wall, str(folder))
     except session.SessionError as exc:
@@ -153,9 +162,9 @@ def _run(
             return (False, died), ignored
         out = fleet.step()
         bridge.send("clock", t=sim.time)
-        for name in out:
+        for name, data in out:
             if name in answered:
-                bridge.send("answer", name=name)
+                bridge.send("answer", name=name, data=data)
                 if trace is not None:
                     trace("out", name, time.perf_counter())
             else:

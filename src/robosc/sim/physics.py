@@ -17,12 +17,13 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from robosc.sim.world import Line, Pose, World
+from robosc.sim.world import Line, Person, Pose, World
 
 
-def irsim_config(world: World, start: Pose | list[Pose]) -> dict[str, Any]:
+def irsim_config(world: World, start: Pose | list[Pose], person: Person | None = None) -> dict[str, Any]:
     """IR-SIM's world configuration for the robots of ``world`` starting at ``start`` (one
-    pose, or one per robot, all in one environment)."""
+    pose, or one per robot, all in one environment); with a ``person``, a body the robots'
+    LiDARs see and touch follows them (IR-SIM's omnidirectional robot, moved by the walk)."""
     starts = start if isinstance(start, list) else [start]
     lidar = world.robot.lidar
     turn = max(world.robot.max_angular, world.robot.turn_speed)
@@ -62,6 +63,15 @@ def irsim_config(world: World, start: Pose | list[Pose]) -> dict[str, Any]:
             for pose in starts
         ],
     }
+    if person is not None:
+        x, y, _ = person.walk[0]
+        config["robot"].append({
+            "kinematics": {"name": "omni"},
+            "shape": {"name": "circle", "radius": person.radius},
+            "state": [x, y, 0],
+            "vel_max": [person.speed, person.speed],
+            "vel_min": [-person.speed, -person.speed],
+        })
     if obstacles:
         config["obstacle"] = obstacles
     return config
@@ -82,20 +92,31 @@ class Bodies:
     """Robots in one IR-SIM environment (each LiDAR sees the others, they touch each other):
     ``bodies``, stepped together."""
 
-    def __init__(self, world: World, starts: list[Pose]) -> None:
+    def __init__(self, world: World, starts: list[Pose], person: Person | None = None) -> None:
         import yaml
 
         irsim = _import_irsim()
 
         with tempfile.TemporaryDirectory(prefix="robosc-sim-") as folder:
             path = Path(folder) / "world.yaml"
-            path.write_text(yaml.safe_dump(irsim_config(world, list(starts))), encoding="utf-8")
+            path.write_text(yaml.safe_dump(irsim_config(world, list(starts), person)), encoding="utf-8")
             self.env = irsim.make(str(path), display=False, headless=True, log_level="ERROR")
-        self.bodies = [Body(world, self.env, robot) for robot in self.env.robot_list]
+        robots = self.env.robot_list
+        self.bodies = [Body(world, self.env, robot) for robot in robots[: len(starts)]]
+        self.person = robots[len(starts)] if person is not None else None  # IR-SIM's body of the person
 
-    def step(self, velocities: list[tuple[float, float]]) -> None:
-        """One step of every robot, each driven with its (linear, angular) velocity."""
-        self.env.step([[linear, angular] for linear, angular in velocities])
+    def person_at(self) -> tuple[float, float]:
+        assert self.person is not None
+        x, y = (float(v) for v in self.person.state[:2, 0])
+        return x, y
+
+    def step(self, velocities: list[tuple[float, float]], person: tuple[float, float] = (0.0, 0.0)) -> None:
+        """One step of every robot, each driven with its (linear, angular) velocity, and of the
+        person (their velocity, x and y)."""
+        actions = [[linear, angular] for linear, angular in velocities]
+        if self.person is not None:
+            actions.append(list(person))
+        self.env.step(actions, action_id=0)
 
 
 class Body:

@@ -15,6 +15,7 @@ import math
 from typing import Any
 
 from robosc.record import field, record
+from robosc.sim.person import Walker
 from robosc.sim.physics import Bodies, Body
 from robosc.sim.world import World
 
@@ -38,6 +39,7 @@ class Status:
     distance: float = 0.0  # metres travelled
     closest: float = math.inf  # closest approach of its edge to a wall or box, metres
     closest_robot: float = math.inf  # in a shared world: to another robot's edge, metres
+    closest_person: float = math.inf  # in a world with a person: to the person's edge, metres
     collided_at: float | None = None
     touched: str = ""  # what it touched: "a wall or box", or another robot ("robot2")
     commands: int = 0  # velocity and rotate commands received
@@ -69,8 +71,10 @@ class Simulation:
         why = world.room_for(robots)
         if why is not None:
             raise ValueError(why)
-        if world.shared:  # one environment: the robots are bodies to each other
-            self.groups = [Bodies(world, [world.start(i) for i in range(robots)])]
+        person = world.fleet.person if world.fleet is not None else None
+        self.walker = Walker(person, world.robot.radius) if person is not None and world.shared else None
+        if world.shared:  # one environment: the robots are bodies to each other (and the person)
+            self.groups = [Bodies(world, [world.start(i) for i in range(robots)], person if self.walker else None)]
         else:
             self.groups = [Bodies(world, [world.start(i)]) for i in range(robots)]
         self.bodies: list[Body] = [body for group in self.groups for body in group.bodies]
@@ -78,6 +82,10 @@ class Simulation:
         self.status = [Status() for _ in range(robots)]
         self.time = 0.0
         self.steps = 0
+        self.person: tuple[float, float] = (math.nan, math.nan)  # where the person is (x, y), if any
+        self.person_trajectory: list[tuple[float, float, float]] = []  # t, x, y
+        if self.walker is not None:
+            self.person = self.groups[0].person_at()
         self.pressed = [False] * robots
         self._trajectory_every = max(1, trajectory_every)
         self._next_scan = 0.0
@@ -132,9 +140,13 @@ class Simulation:
             linear, angular = self._velocity(drive, dt)
             velocities.append((linear, angular) if self.status[i].collided_at is None else (0.0, 0.0))
         before = [body.pose for body in self.bodies]
+        walking = (0.0, 0.0)
+        if self.walker is not None:
+            x, y = self.groups[0].person_at()
+            walking = self.walker.velocity(self.time, dt, x, y, before)
         first = 0
         for group in self.groups:
-            group.step(velocities[first : first + len(group.bodies)])
+            group.step(velocities[first : first + len(group.bodies)], walking)
             first += len(group.bodies)
         for i, (body, drive) in enumerate(zip(self.bodies, self.drives, strict=True)):
             after = body.pose
@@ -144,6 +156,10 @@ class Simulation:
                 out.append(Message(i, "rotate_done"))
         self.time = round(self.time + dt, 9)
         self.steps += 1
+        if self.walker is not None:
+            self.person = self.groups[0].person_at()
+            if self.steps % self._trajectory_every == 0:
+                self.person_trajectory.append((self.time, round(self.person[0], 4), round(self.person[1], 4)))
         for i, body in enumerate(self.bodies):
             self._observe(i, body)
         for t0, t1 in self.world.presses:
@@ -189,6 +205,12 @@ class Simulation:
                 if k != i and found < gap:
                     nearest, gap = f"robot{k + 1}", found
             status.closest_robot = min(status.closest_robot, gap)
+        if self.walker is not None:  # the person's edge
+            pose, (px, py) = body.pose, self.person
+            found = math.hypot(pose.x - px, pose.y - py) - self.world.robot.radius - self.walker.person.radius
+            status.closest_person = min(status.closest_person, found)
+            if found < gap:
+                nearest, gap = "the person", found
         # IR-SIM stops bodies at contact, so a gap of a hair is a touch too
         if status.collided_at is None and (clearance <= 0.0 or gap <= 1e-3 or body.robot.collision):
             status.collided_at = self.time

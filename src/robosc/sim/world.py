@@ -110,6 +110,19 @@ class Charger:
 
 
 @record
+class Person:
+    """A person walking a scripted path: from the first point of ``walk`` to each next one at
+    ``speed``, standing at a point for its seconds (a point's third number), after ``start``
+    seconds; then the person stays at the last point. A person gives way: one who would come
+    within ``GIVE_WAY`` metres of a robot waits where they are."""
+
+    walk: tuple[tuple[float, float, float], ...]  # x, y, seconds standing there
+    radius: float = 0.25
+    speed: float = 0.6  # m/s
+    start: float = 0.0  # s before the person sets off
+
+
+@record
 class Fleet:
     """What a fleet's robots do in the world. Each ``go`` of a robot drives the next leg of
     ``task`` (its waypoints in turn; ``home`` is the robot's start and ``lane`` its home +
@@ -122,6 +135,7 @@ class Fleet:
     lane: tuple[float, float] = (0.0, 0.0)
     door: Door | None = None
     charger: Charger | None = None
+    person: Person | None = None
 
     def point(self, name: str, home: Pose) -> tuple[float, float]:
         """Where waypoint ``name`` is for the robot whose home is ``home``."""
@@ -416,7 +430,7 @@ def _world(r: _Reader, root: Any) -> World:
 
 
 def _fleet(r: _Reader, node: Any) -> Fleet:
-    top = r.mapping(node, "fleet", {"waypoints", "task", "cells", "lane", "door", "charger"})
+    top = r.mapping(node, "fleet", {"waypoints", "task", "cells", "lane", "door", "charger", "person"})
     for required in ("waypoints", "task"):
         if required not in top:
             raise r.fail(node, f"the fleet needs '{required}'")
@@ -463,7 +477,29 @@ def _fleet(r: _Reader, node: Any) -> Fleet:
             r.point(c["via"], "charger via") if "via" in c else (0.0, 0.0),
             r.number(c["seconds"], "charger seconds", positive=True) if "seconds" in c else 3.0,
         )
-    return Fleet(tuple(waypoints.items()), tuple(task), tuple(cells), lane, door, charger)
+    person = _person(r, top["person"]) if "person" in top else None
+    return Fleet(tuple(waypoints.items()), tuple(task), tuple(cells), lane, door, charger, person)
+
+
+def _person(r: _Reader, node: Any) -> Person:
+    keys = r.mapping(node, "person", {"walk", "radius", "speed", "start"})
+    if "walk" not in keys:
+        raise r.fail(node, "the person needs 'walk' (the points they walk to in turn)")
+    walk = []
+    for point in r.sequence(keys["walk"], "walk (a list of [x, y] or [x, y, seconds standing there])"):
+        items = r.sequence(point, "a point of the walk ([x, y] or [x, y, seconds standing there])")
+        if len(items) not in (2, 3):
+            raise r.fail(point, "a point of the walk is [x, y] or [x, y, seconds standing there]")
+        stand = r.number(items[2], "seconds standing there", low=0) if len(items) == 3 else 0.0
+        walk.append((r.number(items[0], "x"), r.number(items[1], "y"), stand))
+    if not walk:
+        raise r.fail(keys["walk"], "the walk needs at least one point")
+    return Person(
+        tuple(walk),
+        r.number(keys["radius"], "person radius", positive=True) if "radius" in keys else 0.25,
+        r.number(keys["speed"], "person speed", positive=True) if "speed" in keys else 0.6,
+        r.number(keys["start"], "person start", low=0) if "start" in keys else 0.0,
+    )
 
 
 class _AnyKey(set):  # type: ignore[type-arg]

@@ -9,8 +9,9 @@ simulation -> node:
   {"op": "quit"}
   a fleet's world (the coordinator's topics, every message std_msgs/Empty):
   {"op": "setup", "robots": [], "topics": {}, "roles": [], "scan": {},
-   "fleet": {"commands": [[name, topic], ...], "answers": [[name, topic], ...]}}
-  {"op": "answer", "name": name}        (a robot or the door answers: publish on its topic)
+   "fleet": {"commands": [[name, topic, kind], ...], "answers": [[name, topic, kind], ...]}}
+   (kind "none": std_msgs/Empty; "string": std_msgs/String)
+  {"op": "answer", "name": name, "data": text or null}   (an answer: publish it on its topic)
 node -> simulation:
   {"op": "ready"}
   {"op": "peers", "robots": [connected roles of robot 0, ...]}
@@ -118,8 +119,8 @@ class Setup(object):
         self.roles = [str(r) for r in message["roles"]]  # type: List[str]
         self.scan = dict(message["scan"])  # type: Dict[str, Any]
         fleet = message.get("fleet") or {}
-        self.commands = [(str(n), str(t)) for n, t in fleet.get("commands", [])]  # type: List[Tuple[str, str]]
-        self.answers = [(str(n), str(t)) for n, t in fleet.get("answers", [])]  # type: List[Tuple[str, str]]
+        self.commands = [(str(n), str(t), str(k)) for n, t, k in fleet.get("commands", [])]  # type: List[Tuple[str, str, str]]
+        self.answers = [(str(n), str(t), str(k)) for n, t, k in fleet.get("answers", [])]  # type: List[Tuple[str, str, str]]
         self.fleet = "fleet" in message
 
 
@@ -236,12 +237,15 @@ class FleetWiring(object):
         publisher: Callable[[str, Any], Any],
         subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
     ) -> None:
-        from std_msgs.msg import Empty
+        from std_msgs.msg import Empty, String
 
-        self.empty = Empty
-        self.publishers = dict((name, (topic, publisher(topic, Empty))) for name, topic in setup.answers)
+        self.kinds = {"none": Empty, "string": String}
+        self.publishers = dict(
+            (name, (topic, publisher(topic, self.kinds[kind]), kind)) for name, topic, kind in setup.answers
+        )
         self.subscriptions = dict(
-            (name, (topic, subscriber(topic, Empty, self._order(channel, name)))) for name, topic in setup.commands
+            (name, (topic, subscriber(topic, self.kinds[kind], self._order(channel, name))))
+            for name, topic, kind in setup.commands
         )
 
     @staticmethod
@@ -256,12 +260,15 @@ class FleetWiring(object):
             elif op == "answer":
                 found = self.publishers.get(str(message.get("name")))
                 if found is not None:
-                    found[1].publish(self.empty())
+                    out = self.kinds[found[2]]()
+                    if found[2] == "string":
+                        out.data = str(message.get("data") or "")
+                    found[1].publish(out)
 
         return handle
 
     def peers(self, publisher_count: Callable[[Any], int], subscriber_count: Callable[[Any], int]) -> List[List[str]]:
         """The topics that have the coordinator on the other end (as one robot's list)."""
-        connected = [topic for topic, p in self.publishers.values() if publisher_count(p) > 0]
+        connected = [topic for topic, p, _ in self.publishers.values() if publisher_count(p) > 0]
         connected += [topic for topic, s in self.subscriptions.values() if subscriber_count(s) > 0]
         return [connected]
