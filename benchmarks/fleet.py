@@ -11,6 +11,18 @@ controller node (one generated package, N instances) on one ROS 2 graph, for N =
   before the next scan (the robot is turning: nothing to command) is not counted.
 
 Run: python benchmarks/fleet.py [--sizes 1 2 4 8 16] [--seconds 20] [--speed 2] [--ros 2]
+
+With ``--world warehouse`` (issue 31): the warehouse's coordinator package
+(``examples/warehouse.rscd`` with N robots, its default parameters) commanding N robots in the
+warehouse's world (``examples/worlds/warehouse.yaml``, the person included) on ROS 2 until each
+has done one task, as ``robosc sim`` runs it, for N = 2, 4, 8 (the world has eight homes):
+simulated seconds per wall second, the coordinator's CPU (from /proc), decision latency (an
+answer leaving the simulation -> the next command coming back: bridge -> DDS -> coordinator ->
+DDS -> bridge, median and p99 in wall milliseconds; an answer no command follows before the next
+answer is not counted), messages per wall second (answers and commands), tasks per simulated
+hour, the time each robot stood waiting (mean), collisions and how the run ended.
+
+Run: python benchmarks/fleet.py --world warehouse [--sizes 2 4 8] [--speed 4]
 """
 
 from __future__ import annotations
@@ -84,14 +96,78 @@ def one_run(plan, module, world, ros: int, robots: int, seconds: float, speed: f
     }
 
 
+def warehouse_run(robots: int, speed: float, ros: int) -> dict:
+    """One run of the warehouse's fleet with ``robots`` robots (see the module's description)."""
+    from robosc.api import check_text, plan_supervisor, synthesize_model
+    from robosc.runtime.simulator import load_module
+    from robosc.sim.fleet_ros import run_fleet_ros
+    from robosc.sim.world import load_world
+
+    path = ROOT / "examples" / "warehouse.rscd"
+    text = path.read_text().replace("component bot[3]", f"component bot[{robots}]")
+    plan = plan_supervisor(synthesize_model(check_text(text, path=str(path)).model))
+    world = load_world(ROOT / "examples" / "worlds" / "warehouse.yaml")
+    cpu: list[float] = []
+    events: list[tuple[str, float]] = []
+
+    def on_end(graph) -> None:
+        for name, process in graph.processes:
+            if name == "coordinator":
+                cpu.append(cpu_seconds(process.pid) or float("nan"))
+
+    def trace(direction: str, name: str, now: float) -> None:
+        events.append((direction, now))
+
+    with tempfile.TemporaryDirectory(prefix="robosc-fleet-") as folder:
+        report = run_fleet_ros(
+            world, plan, load_module(plan), ros, robots, tasks=1, timeout=300.0 * robots, speed=speed,
+            folder=Path(folder), domain=60 + robots, trace=trace, on_end=on_end,
+        )
+    latencies = []
+    answered: float | None = None
+    for direction, now in events:
+        if direction == "out":
+            answered = now  # an answer no command follows before the next one is not counted
+        elif answered is not None:
+            latencies.append(now - answered)
+            answered = None
+    return {"report": report, "cpu": cpu[0] if cpu else float("nan"), "latencies": latencies, "messages": len(events)}
+
+
+def warehouse(sizes: list[int], speed: float, ros: int) -> None:
+    print(f"the warehouse's fleet on ROS {ros}, one task per robot, {speed:g}x real time, "
+          f"{os.cpu_count()} cores; Python {sys.version.split()[0]}")
+    print("| N | simulated s | wall s | sim / wall | coordinator CPU % | decision ms median | p99 | samples "
+          "| messages / s | tasks / sim h | waiting s / robot | collisions | ended |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for n in sizes:
+        got = warehouse_run(n, speed, ros)
+        report = got["report"]
+        lat = sorted(1000 * x for x in got["latencies"])
+        median = statistics.median(lat) if lat else float("nan")
+        p99 = lat[min(len(lat) - 1, int(0.99 * len(lat)))] if lat else float("nan")
+        tasks = sum(s.tasks for s in report.robots)
+        waiting = statistics.mean(s.waiting for s in report.robots)
+        print(f"| {n} | {report.simulated:.0f} | {report.wall:.0f} | {report.simulated / report.wall:.1f} "
+              f"| {100 * got['cpu'] / report.wall:.1f} | {median:.1f} | {p99:.1f} | {len(lat)} "
+              f"| {got['messages'] / report.wall:.1f} | {3600 * tasks / report.simulated:.0f} | {waiting:.0f} "
+              f"| {report.collisions} | {report.why.split(':')[0]} |", flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sizes", type=int, nargs="+", default=[1, 2, 4, 8, 16])
+    parser.add_argument("--world", choices=["maze", "warehouse"], default="maze")
+    parser.add_argument("--sizes", type=int, nargs="+")
     parser.add_argument("--seconds", type=float, default=20.0, help="simulated seconds per run")
-    parser.add_argument("--speed", type=float, default=2.0, help="simulated seconds per wall second")
+    parser.add_argument("--speed", type=float, help="simulated seconds per wall second (2; the warehouse: 4)")
     parser.add_argument("--ros", type=int, choices=[1, 2], default=2)
     args = parser.parse_args()
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    if args.world == "warehouse":
+        warehouse(args.sizes or [2, 4, 8], args.speed or 4.0, args.ros)
+        return
+    args.sizes = args.sizes or [1, 2, 4, 8, 16]
+    args.speed = args.speed or 2.0
 
     from robosc.api import plan_supervisor, synthesize_file
     from robosc.runtime.simulator import load_module

@@ -88,6 +88,8 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
         (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 34, "'home' is each robot's own: it cannot be a waypoint"),
         (("[6.4, 3.3, 20]", "[6.4, 3.3, 20, 1]"), 62, "a point of the walk is [x, y] or [x, y, seconds standing there]"),
         (("    speed: 0.6\n", "    speed: -1\n"), 57, "person speed"),
+        (("  task:", "  tasks: [[[c1]]]\n  task:"), 31, "'task' (every robot's) or 'tasks' (one per robot), not both"),
+        (("  task:", "  tasks:"), 39, "a leg of the task (a list of waypoints) must be a list"),
     ],
 )
 def test_a_fleet_world_is_checked_with_file_line_and_column(

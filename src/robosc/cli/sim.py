@@ -196,7 +196,12 @@ def _fleet(
     verdict = "ok" if report.ok else "FAILED"
     click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")
     if record:
-        click.echo(f"recorded {folder} (the coordinator's package, its event log and the nodes' logs)")
+        from robosc.sim.recording import animate_fleet
+
+        folder.mkdir(parents=True, exist_ok=True)
+        animate_fleet(report, world, folder / "fleet.gif")
+        kept = "" if ros == "none" else ", the coordinator's package, its event log and the nodes' logs"
+        click.echo(f"recorded {folder} (fleet.gif: an animation of the run{kept})")
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
 

@@ -23,6 +23,7 @@ told), or at the time-out.
 from __future__ import annotations
 
 import math
+import random
 import time
 import types
 from typing import Any
@@ -59,6 +60,21 @@ def instances(module: types.ModuleType) -> list[str]:
     return sorted(found, key=order)
 
 
+@record
+class Jitter:
+    """Robots that differ from run to run: each drives at a share of the world's top speed
+    drawn from ``speed`` and starts after a delay drawn from ``delay`` (simulated seconds)."""
+
+    seed: int
+    speed: tuple[float, float] = (0.6, 1.0)
+    delay: tuple[float, float] = (0.0, 5.0)
+
+    def draw(self, robots: int) -> list[tuple[float, float]]:
+        """(speed share, start delay) for each robot."""
+        chance = random.Random(self.seed)
+        return [(chance.uniform(*self.speed), chance.uniform(*self.delay)) for _ in range(robots)]
+
+
 @record(frozen=False)
 class FleetStatus:
     """What one robot did in the run."""
@@ -73,8 +89,12 @@ class Driver:
     """One robot's driver: drives the legs of the task, docks, and answers as a fleet's robot
     does (see the module's description)."""
 
-    def __init__(self, index: int, fleet: Fleet, home: Pose) -> None:
+    def __init__(self, index: int, fleet: Fleet, home: Pose, speed: float = 1.0, wake: float = 0.0) -> None:
         self.index, self.fleet, self.home = index, fleet, home
+        self.task = fleet.task_of(index)
+        self.speed = speed  # a share of the world's top speed this robot drives at
+        self.wake = wake  # simulated seconds before it starts to move (commands wait till then)
+        self.held: list[str] = []  # commands that came before it woke
         self.leg = 0  # the next leg of the task
         self.path: list[tuple[float, float]] = []  # points still to reach
         self.doing = "idle"  # idle, driving, stopped, docking, charging, undocking
@@ -84,6 +104,9 @@ class Driver:
         self.answers: list[str] = []
 
     def command(self, name: str, now: float) -> None:
+        if now + 1e-9 < self.wake:
+            self.held.append(name)
+            return
         if name == "go":
             if self.doing == "stopped":
                 self.doing = "driving"  # go on with the same leg
@@ -103,12 +126,16 @@ class Driver:
         return self.home.x + via[0], self.home.y + via[1]
 
     def _start_leg(self) -> None:
-        names = self.fleet.task[self.leg]
+        names = self.task[self.leg]
         self.path = [self.fleet.point(name, self.home) for name in names]
         self.doing = "driving"
 
     def step(self, sim: Simulation, scan: list[float] | None, now: float, status: FleetStatus) -> None:
         """Drive toward the next point of the path; answer what happened."""
+        if self.held and now + 1e-9 >= self.wake:
+            held, self.held = self.held, []
+            for name in held:
+                self.command(name, now)
         if self.doing == "charging":
             if now >= self.charged_at:
                 self.path = [self._via(), (self.home.x, self.home.y)]
@@ -139,7 +166,7 @@ class Driver:
         error = math.atan2(math.sin(off), math.cos(off))  # -pi .. pi
         limits = sim.world.robot
         angular = max(-limits.max_angular, min(limits.max_angular, 3.0 * error))
-        linear = 0.0 if abs(error) > 0.35 else min(limits.max_linear, 1.5 * distance)
+        linear = 0.0 if abs(error) > 0.35 else min(limits.max_linear * self.speed, 1.5 * distance)
         sim.command_velocity(self.index, linear, angular)
 
     def _finished(self, now: float, status: FleetStatus) -> None:
@@ -155,7 +182,7 @@ class Driver:
             self.doing = "idle"
             self.answers.append("arrived")
             self.leg += 1
-            if self.leg == len(self.fleet.task):
+            if self.leg == len(self.task):
                 self.leg = 0
                 status.tasks += 1
         if self.queued:
@@ -180,15 +207,18 @@ class DoorSim:
     def __init__(self, seconds: float) -> None:
         self.state, self.seconds, self.until = "closed", seconds, 0.0
         self.answers: list[str] = []
+        self.states: list[tuple[float, str]] = [(0.0, "closed")]  # (t, state) at each change, for pictures
 
     def command(self, name: str, now: float) -> None:
         moving = DOOR_COMMANDS[name]
         if (moving, self.state) in (("opening", "closed"), ("closing", "open")):
             self.state, self.until = moving, now + self.seconds
+            self.states.append((now, moving))
 
     def step(self, now: float) -> None:
         if self.state in ("opening", "closing") and now >= self.until:
             self.state = "open" if self.state == "opening" else "closed"
+            self.states.append((now, self.state))
             self.answers.append("door_opened" if self.state == "open" else "door_closed")
 
 
@@ -205,6 +235,8 @@ class FleetReport:
     folder: str = ""  # on ROS: where the package and the logs are
     status: tuple[Status, ...] = field(default=(), compare=False, repr=False)  # the simulation's, per robot
     person: bool = False  # the world has a person (Status.closest_person: each robot's closest approach)
+    person_trajectory: tuple[tuple[float, float, float], ...] = field(default=(), compare=False, repr=False)
+    door_states: tuple[tuple[float, str], ...] = field(default=(), compare=False, repr=False)  # (t, state) at each change
 
 
 class FleetWorld:
@@ -212,14 +244,15 @@ class FleetWorld:
     come in by the coordinator's names (``bot1.go``, ``open_door``); each ``step()`` returns the
     answers the robots and the door gave (``bot1.arrived``, ``door_opened``)."""
 
-    def __init__(self, world: World, names: list[str]) -> None:
+    def __init__(self, world: World, names: list[str], jitter: Jitter | None = None) -> None:
         if world.fleet is None:
             raise FleetMisfit(f"{world.path} is not a fleet's world (it has no 'fleet')")
         self.sim = Simulation(world, len(names))
         self.fleet = world.fleet
         self.names = names
         self.index = {name: i for i, name in enumerate(names)}
-        self.drivers = [Driver(i, world.fleet, world.start(i)) for i in range(len(names))]
+        draws = jitter.draw(len(names)) if jitter is not None else [(1.0, 0.0)] * len(names)
+        self.drivers = [Driver(i, world.fleet, world.start(i), *draws[i]) for i in range(len(names))]
         self.status = [FleetStatus(name) for name in names]
         self.door = DoorSim(world.fleet.door.seconds) if world.fleet.door is not None else None
         self.scans: list[list[float] | None] = [None] * len(names)
@@ -309,7 +342,7 @@ class FleetWorld:
             x, y = driver.path[0]
             told += f", {math.hypot(x - pose.x, y - pose.y):.2f} m from ({x:g}, {y:g})"
         elif driver.doing == "idle":
-            x, y = self.fleet.point(self.fleet.task[driver.leg][-1], driver.home)
+            x, y = self.fleet.point(driver.task[driver.leg][-1], driver.home)
             told += f", its next move into {self.fleet.cell(x, y) or 'no cell'}"
         return told + ")"
 
@@ -318,7 +351,8 @@ class FleetWorld:
             ended[0], ended[1], tuple(self.status), self.sim.time,
             tuple(s.closest_robot for s in self.sim.status),
             sum(1 for s in self.sim.status if s.collided_at is not None), ignored, wall, folder,
-            tuple(self.sim.status), self.sim.walker is not None,
+            tuple(self.sim.status), self.sim.walker is not None, tuple(self.sim.person_trajectory),
+            tuple(self.door.states) if self.door is not None else (),
         )
 
 
@@ -332,10 +366,13 @@ def check_size(names: list[str], robots: int) -> None:
 class FleetRun:
     """The generated coordinator (``module``) commanding ``world``'s fleet in this process."""
 
-    def __init__(self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0) -> None:
+    def __init__(
+        self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0,
+        jitter: Jitter | None = None,
+    ) -> None:
         names = instances(module)
         check_size(names, robots)
-        self.world = FleetWorld(world, names)
+        self.world = FleetWorld(world, names, jitter)
         self.sim = self.world.sim
         self.rate = rate
         self.ignored = 0

@@ -27,6 +27,7 @@ from robosc.sim.fleet import (
     FleetMisfit,
     FleetReport,
     FleetWorld,
+    Jitter,
     check_size,
     instances,
 )
@@ -85,14 +86,18 @@ def run_fleet_ros(
     domain: int | None = None,
     on_start: Callable[[object], None] | None = None,
     trace: Trace | None = None,
+    on_end: Callable[[object], None] | None = None,
+    jitter: Jitter | None = None,
 ) -> FleetReport:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
-    runs once the nodes are started; ``trace`` sees every command come and answer sent."""
+    runs once the nodes are started, ``on_end(graph)`` when the run is over, before they are
+    stopped; ``trace`` sees every command come and answer sent; ``jitter`` draws the robots'
+    speeds and start delays."""
     names = instances(module)
     check_size(names, robots)
     commands, answers = wiring(plan, names)
-    fleet = FleetWorld(world, names)
+    fleet = FleetWorld(world, names, jitter)
     if folder is None:
         folder = Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     folder.mkdir(parents=True, exist_ok=True)
@@ -120,6 +125,8 @@ def run_fleet_ros(
         started = time.monotonic()
         ended, ignored = _run(fleet, bridge, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace)
         wall = time.monotonic() - started
+        if on_end is not None:
+            on_end(graph)
         return fleet.report(ended, ignored, wall, str(folder))
     except session.SessionError as exc:
         raise session.SessionError(f"{exc}\n{graph.output()}") from None

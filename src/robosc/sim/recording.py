@@ -236,3 +236,92 @@ def _rays(
         xs += [x, x + r * math.cos(angle), math.nan]
         ys += [y, y + r * math.sin(angle), math.nan]
     return xs, ys
+
+
+FLEET_STEP = 2.0  # seconds of simulated time per frame of a fleet's animation
+CELL_COLOUR = "#dddddd"
+
+
+def animate_fleet(report: Any, world: World, output: Path) -> Path:
+    """An animated GIF of a fleet's run (robosc.sim.fleet.FleetReport): the walls, the cells
+    (one with a single robot in it filled with that robot's colour), the door (red while not open), each robot
+    with its name and its last seconds of trajectory, and the person; one frame per
+    ``FLEET_STEP`` seconds of simulated time."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation, PillowWriter
+    from matplotlib.patches import Circle, Polygon
+
+    fleet = world.fleet
+    assert fleet is not None
+    width, height = world.size
+    fig, ax = plt.subplots(figsize=(7.0, 7.0 * height / width + 0.4), dpi=72)
+    ax.set_xlim(0, width)
+    ax.set_ylim(0, height)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    cells = {}
+    for name, polygon in fleet.cells:
+        patch = Polygon(list(polygon), closed=True, facecolor=CELL_COLOUR, edgecolor="#999999", alpha=0.5)
+        ax.add_patch(patch)
+        cx = sum(p[0] for p in polygon) / len(polygon)
+        ax.text(cx, max(p[1] for p in polygon) - 0.25, name, ha="center", fontsize=7, color="#777777")
+        cells[name] = patch
+    for wall in world.walls:
+        ax.plot([p[0] for p in wall], [p[1] for p in wall], color="black", linewidth=2)
+    door = None
+    if fleet.door is not None:
+        (ax_, ay), (bx, by) = fleet.door.a, fleet.door.b
+        (door,) = ax.plot([ax_, bx], [ay, by], color="#e15759", linewidth=4)
+    radius = world.robot.radius
+    bodies, names, trails = [], [], []
+    for k, robot in enumerate(report.robots):
+        color = ROBOT_COLOURS[k % len(ROBOT_COLOURS)]
+        (trail,) = ax.plot([], [], color=color, linewidth=1)
+        body = Circle((0, 0), radius, color=color, zorder=3)
+        ax.add_patch(body)
+        names.append(ax.text(0, 0, robot.name, color=color, fontsize=7, fontweight="bold", zorder=10))
+        bodies.append(body)
+        trails.append(trail)
+    person = None
+    if report.person_trajectory:
+        person = Circle((0, 0), fleet.person.radius if fleet.person else 0.25, color="#222222", zorder=4)
+        ax.add_patch(person)
+    title = ax.set_title("", fontsize=9, loc="left")
+    end = report.simulated
+    frames = max(1, int(end / FLEET_STEP) + 1)
+    colour_of = {k: ROBOT_COLOURS[k % len(ROBOT_COLOURS)] for k in range(len(report.robots))}
+
+    def draw(frame: int) -> list[Any]:
+        t = min(end, frame * FLEET_STEP)
+        inside: dict[str, list[int]] = {}
+        for k, status in enumerate(report.status):
+            shown = [p for p in status.trajectory if t - 10.0 <= p[0] <= t + 1e-9] or status.trajectory[:1]
+            trails[k].set_data([p[1] for p in shown], [p[2] for p in shown])
+            x, y = shown[-1][1], shown[-1][2]
+            bodies[k].center = (x, y)
+            names[k].set_position((x + radius * 1.2, y + radius * 1.2))
+            cell = fleet.cell(x, y)
+            if cell:
+                inside.setdefault(cell, []).append(k)
+        for name, patch in cells.items():  # a cell with one robot in it has its colour
+            robots = inside.get(name, [])
+            patch.set_facecolor(colour_of[robots[0]] if len(robots) == 1 else CELL_COLOUR)
+        if door is not None:
+            state = [s for when, s in report.door_states if when <= t + 1e-9][-1:] or ["closed"]
+            door.set_color("#59a14f" if state[0] == "open" else "#e15759")
+        said = ""
+        if person is not None:
+            here = [p for p in report.person_trajectory if p[0] <= t + 1e-9] or list(report.person_trajectory[:1])
+            person.center = (here[-1][1], here[-1][2])
+            said = f", the person in {fleet.cell(here[-1][1], here[-1][2]) or 'no cell'}"
+        title.set_text(f"t = {t:5.0f} s{said}")
+        return [*trails, *bodies, *names, title]
+
+    animation = FuncAnimation(fig, draw, frames=frames, blit=False)
+    animation.save(str(output), writer=PillowWriter(fps=ANIMATION_FPS))
+    plt.close(fig)
+    return output

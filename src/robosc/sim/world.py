@@ -130,12 +130,17 @@ class Fleet:
     blocked; ``cells`` name the places the report tells the robots in."""
 
     waypoints: tuple[tuple[str, tuple[float, float]], ...]
-    task: tuple[tuple[str, ...], ...]
+    task: tuple[tuple[str, ...], ...]  # every robot's task, unless ``tasks`` gives each its own
     cells: tuple[tuple[str, tuple[tuple[float, float], ...]], ...] = ()
     lane: tuple[float, float] = (0.0, 0.0)
     door: Door | None = None
     charger: Charger | None = None
     person: Person | None = None
+    tasks: tuple[tuple[tuple[str, ...], ...], ...] = ()  # robot k's task: tasks[k - 1] (in turn)
+
+    def task_of(self, robot: int) -> tuple[tuple[str, ...], ...]:
+        """The legs of robot ``robot``'s task (0 for the first robot)."""
+        return self.tasks[robot % len(self.tasks)] if self.tasks else self.task
 
     def point(self, name: str, home: Pose) -> tuple[float, float]:
         """Where waypoint ``name`` is for the robot whose home is ``home``."""
@@ -430,28 +435,22 @@ def _world(r: _Reader, root: Any) -> World:
 
 
 def _fleet(r: _Reader, node: Any) -> Fleet:
-    top = r.mapping(node, "fleet", {"waypoints", "task", "cells", "lane", "door", "charger", "person"})
-    for required in ("waypoints", "task"):
-        if required not in top:
-            raise r.fail(node, f"the fleet needs '{required}'")
-    import yaml
-
+    top = r.mapping(node, "fleet", {"waypoints", "task", "tasks", "cells", "lane", "door", "charger", "person"})
+    if "waypoints" not in top:
+        raise r.fail(node, "the fleet needs 'waypoints'")
+    if ("task" in top) == ("tasks" in top):
+        raise r.fail(node, "the fleet needs 'task' (every robot's) or 'tasks' (one per robot), not both")
     waypoints = {}
     for name, point in r.mapping(top["waypoints"], "waypoints", _AnyKey()).items():
         if name in ("home", "lane"):
             raise r.fail(point, f"'{name}' is each robot's own: it cannot be a waypoint")
         waypoints[name] = r.point(point, f"waypoint '{name}'")
-    task = []
-    for leg in r.sequence(top["task"], "task (one list of waypoints per go)"):
-        names = r.sequence(leg, "a leg of the task (a list of waypoints)")
-        if not names:
-            raise r.fail(leg, "a leg of the task needs at least one waypoint")
-        for n in names:
-            if not isinstance(n, yaml.ScalarNode) or (n.value not in waypoints and n.value not in ("home", "lane")):
-                raise r.fail(n, f"unknown waypoint '{getattr(n, 'value', n)}' (the waypoints, home, lane)")
-        task.append(tuple(str(n.value) for n in names))
-    if not task:
-        raise r.fail(top["task"], "the task needs at least one leg")
+    tasks: tuple[tuple[tuple[str, ...], ...], ...] = ()
+    if "tasks" in top:
+        tasks = tuple(_task(r, t, waypoints) for t in r.sequence(top["tasks"], "tasks (one task per robot)"))
+        if not tasks:
+            raise r.fail(top["tasks"], "'tasks' needs at least one task")
+    task = tasks[0] if tasks else _task(r, top["task"], waypoints)
     cells = []
     for name, polygon in (r.mapping(top["cells"], "cells", _AnyKey()).items() if "cells" in top else []):
         points = tuple(r.point(p, f"a corner of cell '{name}'") for p in r.sequence(polygon, f"cell '{name}'"))
@@ -478,7 +477,24 @@ def _fleet(r: _Reader, node: Any) -> Fleet:
             r.number(c["seconds"], "charger seconds", positive=True) if "seconds" in c else 3.0,
         )
     person = _person(r, top["person"]) if "person" in top else None
-    return Fleet(tuple(waypoints.items()), tuple(task), tuple(cells), lane, door, charger, person)
+    return Fleet(tuple(waypoints.items()), task, tuple(cells), lane, door, charger, person, tasks)
+
+
+def _task(r: _Reader, node: Any, waypoints: dict[str, tuple[float, float]]) -> tuple[tuple[str, ...], ...]:
+    import yaml
+
+    task = []
+    for leg in r.sequence(node, "task (one list of waypoints per go)"):
+        names = r.sequence(leg, "a leg of the task (a list of waypoints)")
+        if not names:
+            raise r.fail(leg, "a leg of the task needs at least one waypoint")
+        for n in names:
+            if not isinstance(n, yaml.ScalarNode) or (n.value not in waypoints and n.value not in ("home", "lane")):
+                raise r.fail(n, f"unknown waypoint '{getattr(n, 'value', n)}' (the waypoints, home, lane)")
+        task.append(tuple(str(n.value) for n in names))
+    if not task:
+        raise r.fail(node, "the task needs at least one leg")
+    return tuple(task)
 
 
 def _person(r: _Reader, node: Any) -> Person:
