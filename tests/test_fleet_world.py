@@ -3,6 +3,7 @@ robots take time to move and are bodies to each other, without middleware."""
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -12,7 +13,7 @@ from robosc.api import check_text, plan_supervisor, synthesize_model
 from robosc.cli.main import main
 from robosc.cli.sim import fleet_table
 from robosc.runtime.simulator import load_module
-from robosc.sim.fleet import FleetMisfit, FleetRun
+from robosc.sim.fleet import FleetMisfit, FleetRun, FleetWorld, Jitter
 from robosc.sim.world import WorldError, load_world
 
 pytest.importorskip("irsim")
@@ -130,3 +131,25 @@ def test_robots_keep_out_of_the_cells_at_and_next_to_a_person_standing_in_the_ai
     out = fleet_table(report, "the person")
     rows = re.findall(r"│ (bot\d) +│ +\d+ │ +\d+ s │ +[\d.]+ m │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
     assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"] and all(float(r[1]) > 0.5 for r in rows), out
+
+
+def test_jitter_makes_each_robot_start_late_and_drive_slower() -> None:
+    """A robot told to go before its start delay is over stands still until then, and then
+    drives no faster than its share of the top speed; the draws follow the seed."""
+    draws = Jitter(5).draw(3)
+    assert draws == Jitter(5).draw(3) and draws != Jitter(6).draw(3)
+    assert all(0.6 <= share <= 1.0 and 0.0 <= delay <= 5.0 for share, delay in draws)
+    world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"], Jitter(5))
+    share, delay = draws[0]
+    start = world.sim.bodies[0].pose
+    world.command("bot1.go")
+    fastest = 0.0
+    while world.sim.time < delay + 8.0:
+        before = world.sim.bodies[0].pose
+        world.step()
+        after = world.sim.bodies[0].pose
+        moved = math.hypot(after.x - before.x, after.y - before.y)
+        if world.sim.time < delay - 1e-6:
+            assert (after.x, after.y) == (start.x, start.y)
+        fastest = max(fastest, moved / world.sim.world.step)
+    assert 0.9 * share * 0.5 < fastest <= share * 0.5 + 1e-6  # it drove, at its share of 0.5 m/s

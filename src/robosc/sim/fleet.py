@@ -1,23 +1,28 @@
-"""A fleet in one world, without middleware: the generated coordinator (one supervisor for every
-robot, the module ``robosc generate`` writes) commands drivers that do what a fleet's robot
-drivers do, in one physics environment where the robots are bodies to each other.
+"""A fleet in one world: the world's side (:class:`FleetWorld`: one physics environment where
+the robots are bodies to each other, a driver per robot, the door, the person's detector) and
+the generated coordinator (one supervisor for every robot, the module ``robosc generate``
+writes) commanding it in this process (:class:`FleetRun`; on ROS: robosc.sim.fleet_ros).
 
 What the world offers a fleet model, by the names of its communications (``bot1.go``: the
 instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...):
 
-* ``go`` (a command): drive the next leg of the world's task (``fleet.task``: waypoints in
-  turn); the driver answers ``arrived`` at the leg's end, or ``stopped`` where its LiDAR sees its
-  way blocked for half a second (it then waits; the next ``go`` goes on with the same leg).
-  A ``go`` that comes while the robot is still driving is queued, as a driver queues goals.
+* ``go`` (a command): drive the next leg of the robot's task (``fleet.task``, or its own in
+  ``fleet.tasks``: waypoints in turn); the driver answers ``arrived`` at the leg's end, or
+  ``stopped`` where its LiDAR sees its way blocked for half a second (it then waits; the next
+  ``go`` goes on with the same leg). A ``go`` that comes while the robot is still driving is
+  queued, as a driver queues goals.
 * ``dock``: drive to the charger, charge, drive home, then answer ``charged``.
 * ``open_door`` / ``close_door``: the door opens or closes in its ``seconds`` and answers
   ``door_opened`` / ``door_closed``; a robot in the doorway while the door is not open is a
   collision.
+* ``person_cell`` (an answer with data): the name of the cell the person is in ("" for none),
+  at the first step and whenever it changes.
 
-The run ends when every robot has done its tasks (success), at the first collision, when no
-robot has got on with its task (arrived at the end of a leg) for ``stall`` seconds while tasks
-remain (a deadlock, or robots stopping again and again: each robot's cell and what it does are
-told), or at the time-out.
+With a :class:`Jitter`, each robot drives at a share of the top speed and starts late, drawn
+from a seed. The run ends when every robot has done its tasks (success), at the first
+collision, when no robot has got on with its task (arrived at the end of a leg) for ``stall``
+seconds while tasks remain (a deadlock, or robots stopping again and again: each robot's cell,
+what its driver does and what it waits for are told), or at the time-out.
 """
 
 from __future__ import annotations

@@ -161,8 +161,8 @@ def _run(
             if message is None:
                 return (False, "the simulator's node ended"), ignored
             if message.get("op") == "order":
-                if trace is not None:
-                    trace("in", str(message.get("name")), time.perf_counter())
+                if trace is not None:  # when its line came from the simulator's node
+                    trace("in", str(message.get("name")), float(message.get("received", time.perf_counter())))
                 fleet.command(str(message.get("name")))
         died = graph.failed(sim)
         if died is not None:
