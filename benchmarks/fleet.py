@@ -120,7 +120,7 @@ def warehouse_run(robots: int, speed: float, ros: int) -> dict:
 
     with tempfile.TemporaryDirectory(prefix="robosc-fleet-") as folder:
         report = run_fleet_ros(
-            world, plan, load_module(plan), ros, robots, tasks=1, timeout=300.0 * robots, speed=speed,
+            world, plan, load_module(plan), ros, robots, tasks=1, timeout=400.0 * robots, speed=speed,
             folder=Path(folder), domain=60 + robots, trace=trace, on_end=on_end,
         )
     latencies = []

@@ -9,7 +9,6 @@ time: ``/clock`` advances at every step, and the coordinator runs on it (``use_s
 
 from __future__ import annotations
 
-import queue
 import tempfile
 import time
 import types
@@ -153,13 +152,10 @@ def _run(
     started = time.monotonic()
     bridge.send("clock", t=sim.time)
     while True:
-        while True:  # the commands that came since the last step
-            try:
-                message = bridge.lines.get_nowait()
-            except queue.Empty:
-                break
-            if message is None:
-                return (False, "the simulator's node ended"), ignored
+        came = session.arrived(bridge)  # the commands that came since the last step
+        if came is None:
+            return (False, "the simulator's node ended"), ignored
+        for message in came:
             if message.get("op") == "order":
                 if trace is not None:  # when its line came from the simulator's node
                     trace("in", str(message.get("name")), float(message.get("received", time.perf_counter())))
@@ -179,6 +175,4 @@ def _run(
         ended = fleet.verdict(tasks, timeout, stall)
         if ended is not None:
             return ended, ignored
-        delay = started + sim.time / speed - time.monotonic()
-        if delay > 0:
-            time.sleep(delay)
+        session.pace(started, sim.time, speed)

@@ -154,6 +154,20 @@ def animate(report: Report, world: World, output: Path) -> Path:
     return output
 
 
+def _figure(world: World, inches: float, dpi: int) -> tuple[Any, Any]:
+    """A figure ``inches`` wide with the world's extent, to scale, without ticks."""
+    import matplotlib.pyplot as plt
+
+    width, height = world.size
+    fig, ax = plt.subplots(figsize=(inches, inches * height / width + 0.4), dpi=dpi)
+    ax.set_xlim(0, width)
+    ax.set_ylim(0, height)
+    ax.set_aspect("equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    return fig, ax
+
+
 ROBOT_COLOURS = ["#4e79a7", "#f28e2b", "#76b7b2", "#b07aa1", "#edc948", "#9c755f", "#ff9da7", "#bab0ac"]
 
 
@@ -161,16 +175,10 @@ def scene(report: Report, world: World) -> tuple[Any, Any, int]:
     """The animation's figure, its ``draw(frame)`` and the number of frames. Each robot has a
     colour of its own, its name next to it and in the legend; robots on the same spot (they
     do not see each other) have their names stacked, so that none hides another unseen."""
-    import matplotlib.pyplot as plt
     from matplotlib.patches import Circle, Rectangle
 
-    width, height = world.size
-    fig, ax = plt.subplots(figsize=(6.0, 6.0 * height / width + 0.4), dpi=80)
-    ax.set_xlim(0, width)
-    ax.set_ylim(0, height)
-    ax.set_aspect("equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
+    height = world.size[1]
+    fig, ax = _figure(world, 6.0, 80)
     goal = world.goal
     (gx0, gx1), (gy0, gy1) = goal.x, goal.y
     ax.add_patch(Rectangle((gx0, gy0), gx1 - gx0, gy1 - gy0, color="#59a14f", alpha=0.25))
@@ -256,13 +264,7 @@ def animate_fleet(report: Any, world: World, output: Path) -> Path:
 
     fleet = world.fleet
     assert fleet is not None
-    width, height = world.size
-    fig, ax = plt.subplots(figsize=(7.0, 7.0 * height / width + 0.4), dpi=72)
-    ax.set_xlim(0, width)
-    ax.set_ylim(0, height)
-    ax.set_aspect("equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
+    fig, ax = _figure(world, 7.0, 72)
     cells = {}
     for name, polygon in fleet.cells:
         patch = Polygon(list(polygon), closed=True, facecolor=CELL_COLOUR, edgecolor="#999999", alpha=0.5)

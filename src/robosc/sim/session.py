@@ -86,13 +86,10 @@ def run(
     started = time.monotonic()
     bridge.send("clock", t=sim.time)
     while True:
-        while True:  # what came from ROS since the last step
-            try:
-                message = bridge.lines.get_nowait()
-            except queue.Empty:
-                break
-            if message is None:
-                return False, "the simulator's node ended"
+        came = arrived(bridge)  # what came from ROS since the last step
+        if came is None:
+            return False, "the simulator's node ended"
+        for message in came:
             _apply(sim, bridge, message, trace)
         if failed is not None:
             why = failed(sim)
@@ -106,9 +103,28 @@ def run(
         ended = sim.verdict(timeout)
         if ended is not None:
             return ended
-        delay = started + sim.time / speed - time.monotonic()
-        if delay > 0:
-            time.sleep(delay)
+        pace(started, sim.time, speed)
+
+
+def arrived(bridge: Bridge) -> list[dict[str, Any]] | None:
+    """The lines the simulator's node sent since the last call; None once it has ended."""
+    lines: list[dict[str, Any]] = []
+    while True:
+        try:
+            message = bridge.lines.get_nowait()
+        except queue.Empty:
+            return lines
+        if message is None:
+            return None
+        lines.append(message)
+
+
+def pace(started: float, simulated: float, speed: float) -> None:
+    """Sleep until ``simulated`` seconds of simulated time are due at ``speed`` times real
+    time from ``started`` (time.monotonic())."""
+    delay = started + simulated / speed - time.monotonic()
+    if delay > 0:
+        time.sleep(delay)
 
 
 def _apply(sim: Simulation, bridge: Bridge, message: dict[str, Any], trace: Trace | None = None) -> None:
