@@ -153,3 +153,18 @@ def test_jitter_makes_each_robot_start_late_and_drive_slower() -> None:
             assert (after.x, after.y) == (start.x, start.y)
         fastest = max(fastest, moved / world.sim.world.step)
     assert 0.9 * share * 0.5 < fastest <= share * 0.5 + 1e-6  # it drove, at its share of 0.5 m/s
+
+
+def test_the_detector_says_where_the_person_is_and_that_nobody_is_there_without_one(tmp_path: Path) -> None:
+    """At the first step the detector reports the person's cell, then only changes; in a world
+    without a person it reports no one ("") once, so a coordinator that waits for data on it
+    does not wait for ever."""
+    world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"])
+    assert ("person_cell", "") in world.step()  # the person starts outside every cell
+    assert all(name != "person_cell" for name, _ in world.step())
+    text = WORLD.read_text()
+    alone = tmp_path / "alone.yaml"
+    alone.write_text(text[: text.index("  person:")])
+    empty = FleetWorld(load_world(alone), ["bot1", "bot2", "bot3"])
+    assert ("person_cell", "") in empty.step()
+    assert all(name != "person_cell" for name, _ in empty.step())

@@ -15,8 +15,8 @@ instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...)
 * ``open_door`` / ``close_door``: the door opens or closes in its ``seconds`` and answers
   ``door_opened`` / ``door_closed``; a robot in the doorway while the door is not open is a
   collision.
-* ``person_cell`` (an answer with data): the name of the cell the person is in ("" for none),
-  at the first step and whenever it changes.
+* ``person_cell`` (an answer with data): the name of the cell the person is in ("" for none,
+  and in a world without a person), at the first step and whenever it changes.
 
 With a :class:`Jitter`, each robot drives at a share of the top speed and starts late, drawn
 from a seed. The run ends when every robot has done its tasks (success), at the first
@@ -283,11 +283,10 @@ class FleetWorld:
                 self.scans[message.robot] = message.value
         now = sim.time
         answers: list[tuple[str, Any]] = []
-        if sim.walker is not None:
-            cell = self.fleet.cell(*sim.person)
-            if cell != self.person_cell:
-                self.person_cell = cell
-                answers.append((PERSON_DETECTOR, cell))
+        cell = self.fleet.cell(*sim.person) if sim.walker is not None else ""  # no person: nobody seen
+        if cell != self.person_cell:
+            self.person_cell = cell
+            answers.append((PERSON_DETECTOR, cell))
         for i, (driver, status) in enumerate(zip(self.drivers, self.status, strict=True)):
             driver.step(sim, self.scans[i], now, status)
             pose = sim.bodies[i].pose

@@ -41,7 +41,7 @@ class Status:
     closest_robot: float = math.inf  # in a shared world: to another robot's edge, metres
     closest_person: float = math.inf  # in a world with a person: to the person's edge, metres
     collided_at: float | None = None
-    touched: str = ""  # what it touched: "a wall or box", or another robot ("robot2")
+    touched: str = ""  # what it touched: "a wall or box", another robot ("robot2") or "the person"
     commands: int = 0  # velocity and rotate commands received
     refused: int = 0  # commands the supervisor refused (the node's ``blocked`` reports)
     bad_commands: int = 0  # commands with a number that is not finite (the robot stopped)
