@@ -163,14 +163,13 @@ def _fleet(
     """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
     package and the simulator's node) or in this process (exits)."""
     from robosc.runtime.simulator import load_module
-    from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
+    from robosc.sim.fleet import FleetMisfit, FleetRun, instances
     from robosc.sim.fleet_ros import run_fleet_ros
     from robosc.sim.session import SessionError
 
     _, plan = supervised(model, include, "a simulation")
     module = load_module(plan)
-    count = len(instances(module))
-    robots = robots if robots is not None else count
+    robots = robots if robots is not None else len(instances(module))
     limit = timeout if timeout is not None else FLEET_SECONDS * robots * tasks
     if ros != "none":
         _check_middleware(int(ros))
@@ -178,8 +177,7 @@ def _fleet(
     try:
         if ros == "none":
             report = FleetRun(world, module, robots, seed=seed, rate=rate).run(tasks=tasks, timeout=limit)
-        else:
-            check_size(instances(module), robots)
+        else:  # it checks the fleet's size before it starts anything
             report = run_fleet_ros(
                 world, plan, module, int(ros), robots, tasks=tasks, timeout=limit, speed=speed, rate=rate,
                 seed=seed, folder=folder, domain=domain, on_start=_say_where_fleet,
