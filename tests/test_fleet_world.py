@@ -168,3 +168,20 @@ def test_the_detector_says_where_the_person_is_and_that_nobody_is_there_without_
     empty = FleetWorld(load_world(alone), ["bot1", "bot2", "bot3"])
     assert ("person_cell", "") in empty.step()
     assert all(name != "person_cell" for name, _ in empty.step())
+
+
+def test_a_person_walks_the_script_and_gives_way_to_a_robot_in_front() -> None:
+    """The walk: standing at its first point until start + its seconds, then toward the next at
+    the person's speed; a step that brings the person closer than 0.3 m to a robot's edge waits,
+    and one that leads away from the robot does not."""
+    from robosc.sim.person import Walker
+    from robosc.sim.world import Person, Pose
+
+    walker = Walker(Person(((0.0, 0.0, 2.0), (5.0, 0.0, 0.0)), radius=0.25, speed=0.5, start=1.0), robot_radius=0.2)
+    assert walker.velocity(2.9, 0.1, 0.0, 0.0, []) == (0.0, 0.0)  # still standing: 1 s + 2 s
+    assert walker.velocity(3.0, 0.1, 0.0, 0.0, []) == pytest.approx((0.5, 0.0))
+    ahead = Pose(0.78, 0.0, 0.0)  # edges 0.33 m apart: one more step comes within 0.3 m
+    assert walker.velocity(3.0, 0.1, 0.0, 0.0, [ahead]) == (0.0, 0.0)
+    behind = Pose(-0.7, 0.0, 0.0)  # as close, but the step leads away from it
+    assert walker.velocity(3.0, 0.1, 0.0, 0.0, [behind]) == pytest.approx((0.5, 0.0))
+    assert walker.velocity(3.0, 0.1, 5.0, 0.0, []) == (0.0, 0.0) and walker.done  # there: the walk is over

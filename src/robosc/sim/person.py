@@ -22,7 +22,6 @@ class Walker:
         self.reach = person.radius + robot_radius + GIVE_WAY
         self.next = 1  # the point walked to
         self.standing_until = person.start + person.walk[0][2]
-        self.waiting = 0.0  # seconds spent giving way
 
     @property
     def done(self) -> bool:
@@ -44,6 +43,5 @@ class Walker:
         for pose in robots:
             closer = math.hypot(nx - pose.x, ny - pose.y) < math.hypot(x - pose.x, y - pose.y)
             if closer and math.hypot(nx - pose.x, ny - pose.y) < self.reach:
-                self.waiting += dt
                 return 0.0, 0.0
         return vx, vy
