@@ -86,7 +86,7 @@ class FleetStatus:
 
     name: str
     tasks: int = 0  # times it drove the whole task
-    waiting: float = 0.0  # simulated seconds it stood still with tasks left (not charging)
+    waiting: float = 0.0  # simulated seconds it stood still, idle or stopped (not charging), its tasks done or not
     stops: int = 0  # times it stopped because its way was blocked
 
 
