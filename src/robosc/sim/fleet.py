@@ -42,7 +42,9 @@ BLOCKED_GAP = 0.25  # metres between the robot's edge and what its LiDAR sees ah
 BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
 AHEAD = math.radians(25)  # half the angle the driver looks ahead in
 ROBOT_COMMANDS = ("go", "dock")
+ROBOT_ANSWERS = ("arrived", "stopped", "charged")  # what a driver says (Driver.answers)
 DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
+DOOR_ANSWERS = ("door_opened", "door_closed")  # what the door says (DoorSim.answers)
 PERSON_DETECTOR = "person_cell"  # the answer that says which cell the person is in
 # simulated seconds without a robot arriving at the end of a leg that end a run as a deadlock (the
 # coordinator's random choices can keep robots waiting for a while: the door opened and closed

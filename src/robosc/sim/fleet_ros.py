@@ -19,8 +19,10 @@ from robosc.codegen.ros import generate, package_name, ros_name
 from robosc.runtime.plan import Plan
 from robosc.sim import session
 from robosc.sim.fleet import (
+    DOOR_ANSWERS,
     DOOR_COMMANDS,
     PERSON_DETECTOR,
+    ROBOT_ANSWERS,
     ROBOT_COMMANDS,
     STALL,
     FleetMisfit,
@@ -34,8 +36,6 @@ from robosc.sim.graph import Graph
 from robosc.sim.world import World
 
 NAMESPACE = "fleet"  # the coordinator's namespace on the simulation's graph
-ROBOT_ANSWERS = ("arrived", "stopped", "charged")
-DOOR_ANSWERS = ("door_opened", "door_closed")
 
 # (direction, name, perf_counter seconds): an answer published ("out"), a command come ("in")
 Trace = Callable[[str, str, float], None]
