@@ -264,9 +264,12 @@ def test_ros1_duplicated_and_impossible_answers_never_move_the_belief(ros1: Ros1
 last = [time.time()]
 def spurious():
     if world.received and time.time() - last[0] > 1.0:
-        last[0] = time.time()
-        aisle = [r for r in ROBOTS if world.rules.where[r] not in ("charging", "depot")]  # as on ROS 2
+        # as on ROS 2, but not a robot one move from the depot: an Empty on ROS 1 has no stamp,
+        # and this one, sent as the coordinator sends go and dock in one breath, can reach it
+        # after that dock and be its answer as far as anyone can tell (README's limits)
+        aisle = [r for r in ROBOTS if world.rules.where[r] not in ("charging", "depot", "back1")]
         if aisle:
+            last[0] = time.time()
             world.spurious(aisle[0] + ".charged", publish)
     return min(gos().values()) >= 8
 assert run(90, spurious), gos()
