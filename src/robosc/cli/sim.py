@@ -7,12 +7,21 @@ import math
 import os
 import shutil
 import tempfile
+import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import click
 
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, supervised
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    exit_with,
+    include_option,
+    input_problem,
+    supervised,
+    view_port_option,
+)
 
 if TYPE_CHECKING:
     from robosc.sim.run import Report
@@ -57,7 +66,7 @@ FLEET_SECONDS = 300.0  # a fleet's default time-out: simulated seconds per robot
     type=click.FloatRange(min=0.0, min_open=True, max=1000.0),
     default=4.0,
     show_default=True,
-    help="Simulated seconds per real second (ROS runs; the nodes follow /clock).",
+    help="Simulated seconds per real second (ROS runs, whose nodes follow /clock, and runs with --view).",
 )
 @click.option(
     "--rate",
@@ -78,6 +87,13 @@ FLEET_SECONDS = 300.0  # a fleet's default time-out: simulated seconds per robot
     type=click.IntRange(0, 232),
     help="ROS 2 domain id of the private graph (default: one picked from the process id).",
 )
+@click.option(
+    "--view",
+    is_flag=True,
+    help="In a fleet's world: serve the fleet's live view on 127.0.0.1 (see --port) while it runs, "
+    "and after it until Ctrl-C.",
+)
+@view_port_option
 @include_option
 def sim(
     world_file: str,
@@ -91,6 +107,8 @@ def sim(
     seed: int,
     record: str | None,
     domain: int | None,
+    view: bool,
+    port: int,
     include: tuple[str, ...],
 ) -> None:
     """Drive robots in a 2D WORLD with the controller synthesized from MODEL, end to end:
@@ -106,7 +124,13 @@ def sim(
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     if world.fleet is not None:
-        _fleet(world, model, include, ros, robots, tasks, timeout, speed, rate, seed, record, domain)
+        _fleet(world, model, include, ros, robots, tasks, timeout, speed, rate, seed, record, domain,
+               port if view else None)
+    if view:
+        raise input_problem(
+            f"{world_file}: --view draws a fleet's world (one with 'fleet'); to watch a robot's controller "
+            "here, run robosc view while robosc sim runs"
+        )
     timeout = timeout if timeout is not None else 300.0
     robots = robots or 1
     crowded = world.room_for(robots)
@@ -159,28 +183,49 @@ def _run(
 def _fleet(
     world: Any, model: str, include: tuple[str, ...], ros: str, robots: int | None, tasks: int,
     timeout: float | None, speed: float, rate: float, seed: int, record: str | None, domain: int | None,
+    port: int | None,
 ) -> None:
     """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
-    package and the simulator's node) or in this process (exits)."""
+    package and the simulator's node) or in this process (exits). ``port``: serve the fleet's
+    live view there."""
     from robosc.runtime.simulator import load_module
-    from robosc.sim.fleet import FleetMisfit, FleetRun, instances
+    from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
     from robosc.sim.fleet_ros import run_fleet_ros
-    from robosc.sim.session import SessionError
+    from robosc.sim.fleet_view import FleetFeed
+    from robosc.sim.session import SessionError, pace
 
-    _, plan = supervised(model, include, "a simulation")
+    result, plan = supervised(model, include, "a simulation")
     module = load_module(plan)
     robots = robots if robots is not None else len(instances(module))
     limit = timeout if timeout is not None else FLEET_SECONDS * robots * tasks
     if ros != "none":
         _check_middleware(int(ros))
+    try:
+        check_size(instances(module), robots)
+    except FleetMisfit as exc:
+        raise input_problem(f"{model}: {exc}") from None
+    live = _fleet_view(result, world, robots, port) if port is not None else None
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     try:
         if ros == "none":
-            report = FleetRun(world, module, robots, seed=seed, rate=rate).run(tasks=tasks, timeout=limit)
+            runs: list[FleetRun] = []
+            hooks: dict[str, Any] = {}
+            if live is not None:  # watched: at --speed times real time
+                feed = FleetFeed(live.publish)
+                started = time.monotonic()
+
+                def step() -> None:
+                    feed.step(runs[0].world)
+                    pace(started, runs[0].sim.time, speed)
+
+                hooks = {"on_event": feed.event, "on_step": step}
+            runs.append(FleetRun(world, module, robots, seed=seed, rate=rate, **hooks))
+            report = runs[0].run(tasks=tasks, timeout=limit)
         else:  # it checks the fleet's size before it starts anything
             report = run_fleet_ros(
                 world, plan, module, int(ros), robots, tasks=tasks, timeout=limit, speed=speed, rate=rate,
                 seed=seed, folder=folder, domain=domain, on_start=_say_where_fleet,
+                on_step=_ros_feed(live, folder) if live is not None else None,
             )
     except (FleetMisfit, ValueError) as exc:
         raise input_problem(f"{model}: {exc}") from None
@@ -200,7 +245,50 @@ def _fleet(
         animate_fleet(report, world, folder / "fleet.gif")
         kept = "" if ros == "none" else ", the coordinator's package, its event log and the nodes' logs"
         click.echo(f"recorded {folder} (fleet.gif: an animation of the run{kept})")
+    if live is not None:
+        live.end(report.why)
+        click.echo(f"still serving the fleet's live view on {live.url}; Ctrl-C to stop", err=True)
+        _serve_until_interrupted(live)
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
+
+
+def _fleet_view(result: Any, world: Any, robots: int, port: int) -> Any:
+    """The fleet's live view, served on 127.0.0.1:``port`` (its URL said)."""
+    from robosc.debug.fleet_view import render_fleet_page
+    from robosc.runtime.onboard.live_server import LiveView
+    from robosc.sim.fleet_view import fleet_map
+
+    try:
+        live = LiveView(render_fleet_page(result, fleet_map(world, robots)), port=port)
+    except OSError as exc:
+        raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
+    click.echo(f"robosc: the fleet's live view: {live.url}", err=True)
+    return live
+
+
+def _ros_feed(live: Any, folder: Path) -> Any:
+    """A step hook for a fleet on ROS: the coordinator's events from its event log, and frames."""
+    from robosc.sim.fleet_view import EventTail, FleetFeed
+
+    tail = EventTail(folder / "events" / "coordinator.jsonl")
+    feed = FleetFeed(live.publish)
+
+    def step(world: Any) -> None:
+        for record in tail.read():
+            feed.event(record)
+        feed.step(world)
+
+    return step
+
+
+def _serve_until_interrupted(live: Any) -> None:
+    try:
+        while True:
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        live.close()
 
 
 def fleet_table(report: Any, title: str) -> str:

@@ -31,6 +31,7 @@ import math
 import random
 import time
 import types
+from collections.abc import Callable
 from typing import Any
 
 from robosc.record import field, record
@@ -352,6 +353,27 @@ class FleetWorld:
             told += f", its next move into {self.fleet.cell(x, y) or 'no cell'}"
         return told + ")"
 
+    def frame(self) -> dict[str, Any]:
+        """What the fleet's live view draws now: each robot's pose, what its driver does, the cell
+        it is in and the cell it drives into (held from its ``go`` until it arrives), its tasks;
+        the person (x, y) or None; the door's state or None."""
+        robots: dict[str, Any] = {}
+        for i, name in enumerate(self.names):
+            pose, driver = self.sim.bodies[i].pose, self.drivers[i]
+            into = ""
+            if driver.doing in ("driving", "stopped") and driver.path:
+                into = self.fleet.cell(*driver.path[-1])
+            robots[name] = {
+                "x": round(pose.x, 3), "y": round(pose.y, 3), "heading": round(pose.heading, 3),
+                "doing": driver.doing, "cell": self.fleet.cell(pose.x, pose.y), "into": into,
+                "tasks": self.status[i].tasks, "collided": self.sim.status[i].collided_at is not None,
+            }
+        person = None
+        if self.sim.walker is not None and math.isfinite(self.sim.person[0]):
+            person = [round(self.sim.person[0], 3), round(self.sim.person[1], 3)]
+        door = self.door.state if self.door is not None else None
+        return {"t": round(self.sim.time, 3), "robots": robots, "person": person, "door": door}
+
     def report(self, ended: tuple[bool, str], ignored: int, wall: float = 0.0, folder: str = "") -> FleetReport:
         return FleetReport(
             ended[0], ended[1], tuple(self.status), self.sim.time,
@@ -374,7 +396,8 @@ class FleetRun:
 
     def __init__(
         self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0,
-        jitter: Jitter | None = None,
+        jitter: Jitter | None = None, on_event: Callable[[dict[str, Any]], None] | None = None,
+        on_step: Callable[[], None] | None = None,
     ) -> None:
         names = instances(module)
         check_size(names, robots)
@@ -393,6 +416,13 @@ class FleetRun:
         # trust_initial_state): nothing to confirm
         self.coordinator = Coordinator(seed=seed, warn=lambda text: None, clock=lambda: run.sim.time,
                                        wait_for_data=False, confirmed=True)
+        if on_event is not None:  # each event as the event log has it: its time, data and the state after it
+            def observe(event: str, controllable: bool, data: Any) -> None:
+                on_event({"time": round(run.sim.time, 6), "event": event, "controllable": controllable,
+                          "data": data, "state": run.coordinator.snapshot()})
+
+            self.coordinator.observer = observe
+        self.on_step = on_step  # called after every step
         self._next_tick = 0.0
 
     def step(self) -> None:
@@ -404,6 +434,8 @@ class FleetRun:
         if self.sim.time + 1e-9 >= self._next_tick:
             self._next_tick += 1.0 / self.rate
             self.coordinator.tick()
+        if self.on_step is not None:
+            self.on_step()
 
     def run(self, tasks: int = 1, timeout: float = 600.0, stall: float = STALL) -> FleetReport:
         started = time.monotonic()

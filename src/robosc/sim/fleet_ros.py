@@ -87,12 +87,14 @@ def run_fleet_ros(
     trace: Trace | None = None,
     on_end: Callable[[object], None] | None = None,
     jitter: Jitter | None = None,
+    on_step: Callable[[FleetWorld], None] | None = None,
 ) -> FleetReport:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
     runs once the nodes are started, ``on_end(graph)`` when the run is over, before they are
     stopped; ``trace`` sees every command come and answer sent; ``jitter`` draws the robots'
-    speeds and start delays."""
+    speeds and start delays; ``on_step(world)`` runs after every step (the coordinator's event
+    log is ``folder/events/coordinator.jsonl``)."""
     names = instances(module)
     check_size(names, robots)
     commands, answers = wiring(plan, names)
@@ -122,7 +124,9 @@ def run_fleet_ros(
         topics = [entry[1] for entry in commands + answers]
         session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, "the coordinator to connect")
         started = time.monotonic()
-        ended, ignored = _run(fleet, bridge, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace)
+        ended, ignored = _run(
+            fleet, bridge, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step
+        )
         wall = time.monotonic() - started
         if on_end is not None:
             on_end(graph)
@@ -145,6 +149,7 @@ def _run(
     stall: float,
     speed: float,
     trace: Trace | None,
+    on_step: Callable[[FleetWorld], None] | None = None,
 ) -> tuple[tuple[bool, str], int]:
     """Steps the world at ``speed`` times real time, passing commands in and answers out."""
     sim = fleet.sim
@@ -172,6 +177,8 @@ def _run(
                     trace("out", name, time.perf_counter())
             else:
                 ignored += 1  # the model has no such answer
+        if on_step is not None:
+            on_step(fleet)
         ended = fleet.verdict(tasks, timeout, stall)
         if ended is not None:
             return ended, ignored

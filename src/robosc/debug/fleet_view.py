@@ -1,0 +1,55 @@
+"""The fleet's live view page: one page for a whole fleet. The map (when a world is known)
+with every robot, the person, the door, and each cell's occupancy (a robot in it) and
+reservation (a robot driving into it); a table of the robots, each one's automaton state and
+variables on demand (a click on its row); the other components; the coordinator's events,
+filtered by robot. A robot whose state the coordinator has not confirmed, or whose position
+has not come for a while, is marked stale.
+
+The page is fed by :mod:`robosc.runtime.onboard.live_server` as the single robot's page is:
+event records (``{"time", "event", "controllable", "data", "state"}``) and, from a simulation
+or pose topics, frames (``{"time", "frame": {"t", "robots": {name: {"x", "y", "heading",
+"doing", "cell", "into", "tasks", "collided"}}, "person", "door"}, "state"}``).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from robosc.codegen.templating import environment
+from robosc.plant.network import AutomatonKind
+from robosc.synthesis.result import SynthesisResult
+
+
+def is_fleet(result: SynthesisResult) -> bool:
+    """Whether the model has groups of instances (``component bot[3]``): a fleet's page then."""
+    return bool(result.network.model.groups)
+
+
+def page_meta(result: SynthesisResult, world_map: dict[str, Any] | None = None) -> dict[str, Any]:
+    """What the page knows before any data: the robots (the groups' instances, in order) and the
+    other components, each with its locations and variables, and the map (or None)."""
+    model = result.network.model
+    automata = {a.name: a for a in result.network.automata if a.kind is AutomatonKind.COMPONENT}
+
+    def entry(component: Any) -> dict[str, Any]:
+        automaton = automata.get(component.name)
+        locations = [loc.name for loc in automaton.locations] if automaton is not None else []
+        variables = [f"{component.name}.{v.name}" for b in component.behaviours for v in b.variables]
+        return {"name": component.name, "group": component.group, "locations": locations, "variables": variables}
+
+    robots = [entry(c) for instances in model.groups.values() for c in instances]
+    grouped = {r["name"] for r in robots}
+    others = [entry(c) for c in model.components if c.name not in grouped]
+    return {"model": model.name, "robots": robots, "others": others, "map": world_map}
+
+
+def render_fleet_page(result: SynthesisResult, world_map: dict[str, Any] | None = None) -> str:
+    """The page (HTML, self-contained) for ``result``'s fleet; ``world_map`` from
+    :func:`robosc.sim.fleet_view.fleet_map` draws the map."""
+    model = result.network.model
+    meta = page_meta(result, world_map)
+    meta_json = json.dumps(meta, sort_keys=True).replace("</", "<\\/")
+    template = environment("robosc.debug").get_template("fleet.html.j2")
+    return template.render(model=model.name, source=Path(model.path).name, meta_json=meta_json, mapped=world_map is not None)

@@ -1,0 +1,254 @@
+"""The fleet's live view in a real browser (Debian's headless Chromium through chromedriver):
+`robosc sim --view` on the warehouse, and the page fed by hand where a robot goes stale. What
+the page draws is checked against the data it was given: each cell is drawn occupied exactly
+when a robot's row says the robot is in it, reserved exactly when one drives into it; the
+event list filtered by robot shows that robot's events only; a robot the coordinator has not
+confirmed, or whose position stopped coming, is marked stale. The tests save screenshots
+(ROBOSC_SCREENSHOT_DIR: copies them there)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from robosc import children
+from robosc.api import synthesize_file
+from robosc.cli.main import main
+from robosc.debug.fleet_view import render_fleet_page
+from robosc.runtime.onboard.live_server import LiveView
+from robosc.sim.fleet_view import EventTail, fleet_map
+from robosc.sim.world import load_world
+from ros_support import free_port, wait_until
+from test_live_view import browser  # noqa: F401 (the fixture)
+
+pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
+
+ROOT = Path(__file__).resolve().parent.parent
+WORLD = ROOT / "examples/worlds/warehouse.yaml"
+MODEL = ROOT / "examples/warehouse.rscd"
+ROBOTS = ("bot1", "bot2", "bot3")
+
+# everything the page shows, read in one script (the page does not change while it runs)
+PAGE = """
+const rows = {};
+for (const tr of document.querySelectorAll('tr.robot')) {
+  const name = tr.id.slice('robot:'.length);
+  const get = (what) => document.getElementById(what + ':' + name).textContent;
+  rows[name] = {loc: get('loc'), doing: get('doing'), cell: get('cell'), into: get('into'), why: get('why'),
+                stale: tr.classList.contains('stale'),
+                body: document.getElementById('body:' + name)?.getAttribute('visibility'),
+                bodyStale: document.getElementById('body:' + name)?.classList.contains('stale')};
+}
+const cells = {};
+for (const shape of document.querySelectorAll('#map polygon.cell')) {
+  cells[shape.id.slice('cellshape:'.length)] = {
+    occupied: shape.classList.contains('occupied'), reserved: shape.classList.contains('reserved'),
+    person: shape.classList.contains('person'), stroke: shape.style.stroke,
+    said: document.getElementById('occupancy:' + shape.id.slice('cellshape:'.length)).textContent};
+}
+const person = document.getElementById('person');
+return {rows, cells, status: document.getElementById('status').textContent,
+        feed: Array.from(document.querySelectorAll('#feed li')).map((li) => li.textContent),
+        person: person ? person.getAttribute('visibility') : null,
+        door: document.getElementById('door')?.getAttribute('class'),
+        others: {Door: document.getElementById('loc:Door').textContent,
+                 cell: document.getElementById('var:Person.cell').textContent}};
+"""
+
+
+def page(driver: Any) -> dict[str, Any]:
+    return dict(driver.execute_script(PAGE))
+
+
+def shoot(driver: Any, tmp_path: Path, name: str) -> None:
+    shot = tmp_path / name
+    driver.save_screenshot(str(shot))
+    assert shot.stat().st_size > 20_000
+    if os.environ.get("ROBOSC_SCREENSHOT_DIR"):
+        shutil.copy(shot, Path(os.environ["ROBOSC_SCREENSHOT_DIR"]) / name)
+
+
+def consistent(seen: dict[str, Any]) -> None:
+    """Each cell drawn as the robots' rows say: occupied by the robots in it, reserved by those
+    driving into it (a robot's colour on the dashed edge), named in its label."""
+    rows, cells = seen["rows"], seen["cells"]
+    for cell, drawn in cells.items():
+        inside = [r for r, row in rows.items() if row["cell"] == cell]
+        coming = [r for r, row in rows.items() if row["into"] == cell]
+        assert drawn["occupied"] == bool(inside), (cell, drawn, rows)
+        assert drawn["reserved"] == bool(coming), (cell, drawn, rows)
+        said = " ".join(inside) + ((" " if inside else "") + "→ " + " ".join(coming) if coming else "")
+        assert drawn["said"] == said, (cell, drawn, rows)
+
+
+def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) -> None:  # noqa: F811
+    port = free_port()
+    log = tmp_path / "sim.log"
+    with open(log, "wb") as out:
+        process = children.start(
+            [sys.executable, "-m", "robosc", "sim", str(WORLD), str(MODEL), "--ros", "none", "--view",
+             "--port", str(port), "--speed", "6"],
+            stdout=out, stderr=subprocess.STDOUT,
+        )
+    try:
+        assert wait_until(lambda: "live view: http://127.0.0.1" in log.read_text(), 120), log.read_text()
+        browser.get(f"http://127.0.0.1:{port}/")
+        assert wait_until(lambda: page(browser)["status"] == "live", 20), log.read_text()
+        assert wait_until(lambda: all(r["body"] == "visible" for r in page(browser)["rows"].values()), 10)
+        assert sorted(page(browser)["rows"]) == list(ROBOTS)
+
+        # the cells as the rows say, every time we look; a reservation and the person seen on the way
+        reserved = person_cell = False
+        end = time.monotonic() + 60
+        while time.monotonic() < end and not (reserved and person_cell):
+            seen = page(browser)
+            consistent(seen)
+            for cell, drawn in seen["cells"].items():
+                if drawn["reserved"] and not reserved:
+                    reserved = True
+                    coming = [r for r, row in seen["rows"].items() if row["into"] == cell]
+                    colour = browser.execute_script("return colour[arguments[0]];", coming[0])
+                    rgb = tuple(int(colour[i : i + 2], 16) for i in (1, 3, 5))
+                    assert drawn["stroke"] == "rgb({}, {}, {})".format(*rgb)
+                    shoot(browser, tmp_path, "fleet_view_reserved.png")
+                if drawn["person"] and seen["person"] == "visible" and not person_cell:
+                    person_cell = True  # the person stands in c2 from about 46 s (examples/worlds/warehouse.yaml)
+                    assert cell == "c2", cell
+                    assert wait_until(lambda: page(browser)["others"]["cell"].startswith("at_c"), 5)
+                    shoot(browser, tmp_path, "fleet_view_person.png")
+            time.sleep(0.3)
+        assert reserved and person_cell, page(browser)
+
+        # a robot on demand: its automaton's locations, the current one marked as its row says
+        browser.find_element("id", "robot:bot2").click()
+        chips = browser.execute_script(
+            "const d = document.getElementById('detail:bot2');"
+            "return [d.hidden, Array.from(d.querySelectorAll('.chip.current')).map(c => c.textContent),"
+            " document.getElementById('loc:bot2').textContent, d.querySelectorAll('.chip').length];"
+        )
+        assert chips[0] is False and chips[1] == [chips[2]] and chips[3] == 25, chips
+
+        # the event list by robot
+        assert wait_until(lambda: len(page(browser)["feed"]) >= 20, 30)
+        select = browser.find_element("id", "filter")
+        for value, wanted in (("bot2", lambda e: e.startswith("bot2.")), ("-", lambda e: not e.startswith("bot"))):
+            browser.execute_script("arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'));", select, value)
+            shown = [line.split(" ")[1] for line in page(browser)["feed"]]
+            assert shown and all(wanted(e) for e in shown), (value, shown)
+        browser.execute_script("arguments[0].value = ''; arguments[0].dispatchEvent(new Event('change'));", select)
+        shown = {line.split(" ")[1].split(".")[0] for line in page(browser)["feed"]}
+        assert len(shown) >= 2, shown  # every robot's again
+        shoot(browser, tmp_path, "fleet_view.png")
+
+        # the run ends; the page says so and stays
+        assert wait_until(lambda: page(browser)["status"].startswith("ended: every robot did its 1 task"), 240), log.read_text()
+        assert not any(r["stale"] for r in page(browser)["rows"].values())
+        assert "still serving the fleet's live view" in log.read_text()
+    finally:
+        children.stop([process])
+    assert "ok: every robot did its 1 task(s)" in log.read_text()
+
+
+def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, tmp_path: Path) -> None:  # noqa: F811
+    result = synthesize_file(MODEL)
+    world = load_world(str(WORLD))
+    view = LiveView(render_fleet_page(result, fleet_map(world, 3)), port=0)
+    try:
+        browser.get(view.url)
+        assert wait_until(lambda: page(browser)["status"] == "live", 10)
+        state = {"automata": {"bot1": "depot", "bot2": "to_out1", "bot3": "depot", "Door": "open", "Person": "watching"},
+                 "variables": {"Person.cell": "away"}, "communications": {}, "data": {}}
+
+        def frame(t: float, robots: tuple[str, ...], into: str = "c1") -> dict[str, Any]:
+            where = {"bot1": (1.2, 0.6, "depot", ""), "bot2": (3.6, 3.3, "c1", into), "bot3": (1.2, 2.0, "depot", "")}
+            return {"time": t, "state": state, "frame": {"t": t, "person": None, "door": "open", "robots": {
+                r: {"x": where[r][0], "y": where[r][1], "heading": 0.0, "doing": "driving", "cell": where[r][2],
+                    "into": where[r][3], "tasks": 0, "collided": False} for r in robots}}}
+
+        view.publish(frame(1.0, ROBOTS))
+        assert wait_until(lambda: page(browser)["rows"]["bot2"]["cell"] == "c1", 10)
+        seen = page(browser)
+        consistent(seen)
+        assert not any(r["stale"] for r in seen["rows"].values()), seen["rows"]
+        assert seen["cells"]["c1"]["occupied"] and not seen["cells"]["c2"]["occupied"]
+        assert seen["rows"]["bot2"]["loc"] == "to_out1" and seen["others"] == {"Door": "open", "cell": "away"}
+        assert seen["door"] == "door open"
+
+        # the coordinator no longer knows where bot2 is (a restart, a lost answer)
+        state = {**state, "automata": {**state["automata"], "bot2": None}}
+        view.publish({"time": 2.0, "event": "bot1.go", "controllable": True, "data": None, "state": state})
+        assert wait_until(lambda: page(browser)["rows"]["bot2"]["why"] == "unconfirmed", 5)
+        seen = page(browser)
+        assert seen["rows"]["bot2"]["stale"] and seen["rows"]["bot2"]["bodyStale"] and seen["rows"]["bot2"]["loc"] == "–"
+        assert [r for r, row in seen["rows"].items() if row["stale"]] == ["bot2"]
+        assert seen["feed"] == ["2.0 bot1.go"]
+
+        # confirmed again, but its position stops coming while the others' come
+        state = {**state, "automata": {**state["automata"], "bot2": "out1"}}
+        started = time.monotonic()
+        while time.monotonic() - started < 3.5:
+            view.publish(frame(3.0 + time.monotonic() - started, ("bot1", "bot3")))
+            time.sleep(0.2)
+        seen = page(browser)
+        assert seen["rows"]["bot2"]["why"].startswith("no position for "), seen["rows"]
+        assert [r for r, row in seen["rows"].items() if row["stale"]] == ["bot2"]
+        consistent(seen)  # drawn where it was last seen: c1 held by it
+        assert seen["cells"]["c1"]["said"] == "bot2" and seen["rows"]["bot2"]["body"] == "visible"
+        shoot(browser, tmp_path, "fleet_view_stale.png")
+        view.publish(frame(7.0, ROBOTS, into="c2"))  # and on its way into c2: c2 is reserved for it
+        assert wait_until(lambda: not page(browser)["rows"]["bot2"]["stale"], 5)
+        seen = page(browser)
+        consistent(seen)
+        assert seen["cells"]["c2"]["reserved"] and seen["cells"]["c2"]["said"] == "→ bot2"
+        assert not seen["cells"]["c1"]["reserved"] and seen["cells"]["c1"]["said"] == "bot2"
+    finally:
+        view.close()
+
+
+def test_a_coordinators_page_without_a_world_lists_the_robots_without_a_map(browser: Any) -> None:  # noqa: F811
+    result = synthesize_file(MODEL)
+    view = LiveView(render_fleet_page(result), port=0)
+    try:
+        browser.get(view.url)
+        assert wait_until(lambda: page(browser)["status"] == "live", 10)  # connected: what is published now is live
+        state = {"automata": {"bot1": "shelf", "bot2": "depot", "bot3": None, "Door": "closed", "Person": "watching"},
+                 "variables": {"Person.cell": "at_c2"}}
+        view.publish({"time": 5.0, "event": "person_cell", "controllable": False, "data": "c2", "state": state})
+        assert wait_until(lambda: page(browser)["rows"]["bot1"]["loc"] == "shelf", 10)
+        seen = page(browser)
+        assert seen["cells"] == {} and browser.execute_script("return document.getElementById('map');") is None
+        assert [r for r, row in seen["rows"].items() if row["stale"]] == ["bot3"]  # no map: unconfirmed only
+        assert seen["feed"] == ['5.0 person_cell c2'] and seen["others"]["cell"] == "at_c2"
+    finally:
+        view.close()
+
+
+def test_the_event_log_is_read_as_it_grows_whole_lines_only(tmp_path: Path) -> None:
+    log = tmp_path / "events.jsonl"
+    tail = EventTail(log)
+    assert tail.read() == []  # not there yet
+    log.write_text('{"event": "a"}\n{"event": "b"')
+    assert tail.read() == [{"event": "a"}]
+    with open(log, "a") as handle:
+        handle.write('}\nnot json\n[1]\n{"event": "c"}\n')
+    assert tail.read() == [{"event": "b"}, {"event": "c"}]
+    assert tail.read() == []
+    log.write_text('{"event": "d"}\n')  # rotated: a new, shorter file
+    assert tail.read() == [{"event": "d"}]
+
+
+def test_view_in_a_world_without_a_fleet_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["sim", str(ROOT / "examples/worlds/maze.yaml"), str(ROOT / "examples/maze_solver.rscd"),
+                 "--ros", "none", "--view"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--view draws a fleet's world" in err and "robosc view" in err, err
+    assert json.dumps(err)  # a message, no traceback
+    assert "Traceback" not in err
