@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -24,8 +25,9 @@ from robosc import children
 from robosc.api import synthesize_file
 from robosc.cli.main import main
 from robosc.debug.fleet_view import render_fleet_page
+from robosc.debug.live import render_page
 from robosc.runtime.onboard.live_server import LiveView
-from robosc.sim.fleet_view import EventTail, fleet_map
+from robosc.sim.fleet_view import EventTail, PoseFeed, fleet_map
 from robosc.sim.world import load_world
 from ros_support import free_port, new_domain, ros2_available, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
@@ -187,7 +189,34 @@ def test_sim_view_on_ros2_shows_the_coordinator_packages_events_and_stays_until_
         shown = [line.split(" ")[1] for line in seen["feed"]]
         assert shown and set(shown) <= set(logged), (shown, logged)  # the coordinator's own events
         shoot(browser, tmp_path, "fleet_view_ros2.png")
-        assert wait_until(lambda: "still serving the fleet's live view" in log.read_text(), 600), log.read_text()
+
+        # robosc view --world on the same graph: the coordinator's page, with the map drawn from
+        # the poses the robots publish
+        graph = dict(item.split("=", 1) for item in re.findall(r"\(watch: (.*?) robosc view", log.read_text())[0].split())
+        view_port = free_port()
+        view_log = tmp_path / "view.log"
+        with open(view_log, "wb") as out:
+            viewer = children.start(
+                [sys.executable, "-m", "robosc", "view", "--ros", "2", "--world", str(WORLD), "--port", str(view_port)],
+                env={**os.environ, **graph}, stdout=out, stderr=subprocess.STDOUT,
+            )
+        try:
+            assert wait_until(lambda: "live view of /fleet on" in view_log.read_text(), 60), view_log.read_text()
+            browser.get(f"http://127.0.0.1:{view_port}/")
+            assert wait_until(lambda: all(r["body"] == "visible" for r in page(browser)["rows"].values()), 20)
+            seen = page(browser)
+            consistent(seen)
+            assert all(row["loc"] in locations and row["cell"] in ("depot", "c1", "c2", "c3", "shelf")
+                       for row in seen["rows"].values()), seen["rows"]
+            assert not any(row["stale"] for row in seen["rows"].values()), seen["rows"]
+            shoot(browser, tmp_path, "fleet_view_remote.png")
+            # the run ends and the graph goes: no pose comes any more, and the page says so per robot
+            assert wait_until(lambda: "still serving the fleet's live view" in log.read_text(), 600), log.read_text()
+            assert wait_until(lambda: all(r["why"].startswith("no position for") for r in page(browser)["rows"].values()), 20)
+            assert all(r["stale"] and r["bodyStale"] for r in page(browser)["rows"].values())
+        finally:
+            children.stop([viewer])
+        browser.get(f"http://127.0.0.1:{port}/")
         assert wait_until(lambda: page(browser)["status"].startswith("ended: every robot did its 1 task"), 10)
     finally:
         if process.poll() is None:
@@ -206,7 +235,7 @@ def page_meta_locations() -> list[str]:
 def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, tmp_path: Path) -> None:  # noqa: F811
     result = synthesize_file(MODEL)
     world = load_world(str(WORLD))
-    view = LiveView(render_fleet_page(result, fleet_map(world, 3)), port=0)
+    view = LiveView(render_fleet_page(result, fleet_map(world)), port=0)
     try:
         browser.get(view.url)
         assert wait_until(lambda: page(browser)["status"] == "live", 10)
@@ -270,7 +299,7 @@ def test_a_coordinators_page_without_a_world_lists_the_robots_without_a_map(brow
         view.publish({"time": 5.0, "event": "person_cell", "controllable": False, "data": "c2", "state": state})
         assert wait_until(lambda: page(browser)["rows"]["bot1"]["loc"] == "shelf", 10)
         seen = page(browser)
-        assert seen["cells"] == {} and browser.execute_script("return document.getElementById('map');") is None
+        assert seen["cells"] == {} and browser.execute_script("return document.getElementById('mapcard').hidden;") is True
         assert [r for r, row in seen["rows"].items() if row["stale"]] == ["bot3"]  # no map: unconfirmed only
         assert seen["feed"] == ['5.0 person_cell c2'] and seen["others"]["cell"] == "at_c2"
     finally:
@@ -298,3 +327,51 @@ def test_view_in_a_world_without_a_fleet_is_refused(capsys: pytest.CaptureFixtur
     assert code == 2 and "--view draws a fleet's world" in err and "robosc view" in err, err
     assert json.dumps(err)  # a message, no traceback
     assert "Traceback" not in err
+
+
+def test_poses_make_frames_of_the_robots_heard_since_the_last(monkeypatch: pytest.MonkeyPatch) -> None:
+    result = synthesize_file(MODEL)
+    feed = PoseFeed(load_world(str(WORLD)))
+    html = feed.page(render_fleet_page(result))  # the coordinator's page, as it publishes it
+    assert '"cells": {"c1"' in html and feed.names == list(ROBOTS)
+    assert feed.topics() == [*[[f"{r}.{w}", f"{r}/{w}"] for r in ROBOTS for w in ("pose", "destination")],
+                             ["person.pose", "person/pose"]]
+    with pytest.raises(ValueError, match="has a map already"):
+        feed.page(html)
+    with pytest.raises(ValueError, match="not a fleet coordinator's"):
+        feed.page(render_page(synthesize_file(ROOT / "examples/maze_solver.rscd")))
+    sent: list[dict[str, Any]] = []
+    feed.attach(sent.append)
+    clock = [100.0]
+    monkeypatch.setattr("robosc.sim.fleet_view.time.monotonic", lambda: clock[0])
+    feed.event({"time": 12.5, "event": "bot2.go", "state": {"automata": {"bot2": "to_out2"}}})
+    feed.pose("bot2.destination", [6.4, 3.3, 0.0])  # where its move ends: in c2
+    feed.pose("person.pose", [6.4, 4.8, 0.0])
+    feed.pose("bot2.pose", [4.5, 3.3, 0.1])
+    assert len(sent) == 1 and sent[0]["frame"]["robots"] == {}  # the first: nothing fresh yet
+    clock[0] += 0.05
+    feed.pose("bot1.pose", [1.2, 0.6, 0.0])  # within PUBLISH_SECONDS: kept for the next frame
+    assert len(sent) == 1
+    clock[0] += 0.1
+    feed.pose("bot3.pose", [float("nan"), 0.0, 0.0])  # no pose: nothing
+    assert len(sent) == 1
+    feed.pose("bot1.destination", [float("nan"), float("nan"), 0.0])  # bot1 has no move under way
+    frame = sent[-1]["frame"]
+    assert sorted(frame["robots"]) == ["bot1", "bot2"] and frame["t"] == 12.5 and frame["person"] == [6.4, 4.8]
+    assert frame["robots"]["bot2"]["cell"] == "c1" and frame["robots"]["bot2"]["into"] == "c2"
+    assert frame["robots"]["bot1"]["cell"] == "depot" and frame["robots"]["bot1"]["into"] == ""
+    assert sent[-1]["state"] == {"automata": {"bot2": "to_out2"}}
+    clock[0] += 0.2
+    feed.pose("person.pose", [float("nan"), float("nan"), 0.0])  # out of sight
+    assert sent[-1]["frame"]["robots"] == {} and sent[-1]["frame"]["person"] is None
+    feed.pose("bot2.destination", [float("nan"), float("nan"), 0.0])  # arrived: no move under way
+    clock[0] += 0.2
+    feed.pose("bot2.pose", [5.0, 3.3, 0.0])
+    assert sent[-1]["frame"]["robots"]["bot2"]["into"] == ""
+    json.dumps(sent, allow_nan=False)  # what the page gets parses in a browser
+
+
+def test_view_with_a_world_that_is_not_a_fleets_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    code = main(["view", "--ros", "2", "--world", str(ROOT / "examples/worlds/maze.yaml")])
+    err = capsys.readouterr().err
+    assert code == 2 and "is not a fleet's world" in err and "Traceback" not in err, err

@@ -29,10 +29,10 @@ MODE = click.option(
 def live_page(result: object) -> str | None:
     """The live view's page, or None (with a note) when Graphviz is not installed."""
     from robosc.debug.layout import LayoutError
-    from robosc.debug.live import render_page
+    from robosc.debug.live import live_page as page_of
 
     try:
-        return render_page(result)  # type: ignore[arg-type]
+        return page_of(result)  # type: ignore[arg-type]
     except LayoutError as exc:
         say(f"robosc: note: no live view page in the package (Graphviz: {exc})", err=True)
         return None

@@ -188,6 +188,7 @@ def _fleet(
     """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
     package and the simulator's node) or in this process (exits). ``port``: serve the fleet's
     live view there."""
+    from robosc.debug.fleet_view import render_fleet_page
     from robosc.runtime.simulator import load_module
     from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
     from robosc.sim.fleet_ros import run_fleet_ros
@@ -204,7 +205,7 @@ def _fleet(
         check_size(instances(module), robots)
     except FleetMisfit as exc:
         raise input_problem(f"{model}: {exc}") from None
-    live = _fleet_view(result, world, robots, port) if port is not None else None
+    live = _fleet_view(result, world, port) if port is not None else None
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     try:
         if ros == "none":
@@ -225,7 +226,7 @@ def _fleet(
             report = run_fleet_ros(
                 world, plan, module, int(ros), robots, tasks=tasks, timeout=limit, speed=speed, rate=rate,
                 seed=seed, folder=folder, domain=domain, on_start=_say_where_fleet,
-                on_step=_ros_feed(live, folder) if live is not None else None,
+                on_step=_ros_feed(live, folder) if live is not None else None, page=render_fleet_page(result),
             )
     except (FleetMisfit, ValueError) as exc:
         raise input_problem(f"{model}: {exc}") from None
@@ -252,14 +253,14 @@ def _fleet(
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
 
-def _fleet_view(result: Any, world: Any, robots: int, port: int) -> Any:
+def _fleet_view(result: Any, world: Any, port: int) -> Any:
     """The fleet's live view, served on 127.0.0.1:``port`` (its URL said)."""
     from robosc.debug.fleet_view import render_fleet_page
     from robosc.runtime.onboard.live_server import LiveView
     from robosc.sim.fleet_view import fleet_map
 
     try:
-        live = LiveView(render_fleet_page(result, fleet_map(world, robots)), port=port)
+        live = LiveView(render_fleet_page(result, fleet_map(world)), port=port)
     except OSError as exc:
         raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
     click.echo(f"robosc: the fleet's live view: {live.url}", err=True)
@@ -326,9 +327,10 @@ def _say_where(graph: object) -> None:
 
 
 def _say_where_fleet(graph: object) -> None:
-    """Where a fleet's private graph is (its coordinator: namespace /fleet)."""
-    where, _ = _where(graph)
-    click.echo(f"robosc: the fleet runs on {where}, its coordinator in the namespace /fleet", err=True)
+    """Where a fleet's private graph is (its coordinator: namespace /fleet), and how to watch it."""
+    where, ros = _where(graph)
+    click.echo(f"robosc: the fleet runs on {where}, its coordinator in the namespace /fleet "
+               f"(watch: {where} robosc view --ros {ros} --world WORLD)", err=True)
 
 
 def _check_middleware(ros: int) -> None:

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import TYPE_CHECKING
 
 import click
 
 from robosc.cli.common import EXIT_OK, exit_with, input_problem, view_port_option
+
+if TYPE_CHECKING:
+    from robosc.sim.fleet_view import PoseFeed
 
 
 @click.command()
@@ -22,12 +26,20 @@ from robosc.cli.common import EXIT_OK, exit_with, input_problem, view_port_optio
     help="Seconds to look for running controllers.",
 )
 @click.option("--list", "list_only", is_flag=True, help="Only list the controllers found.")
-def view(ros: str, namespace: str | None, port: int, discover: float, list_only: bool) -> None:
+@click.option(
+    "--world",
+    "world_file",
+    type=click.Path(),
+    help="A fleet's world file: draw the fleet's coordinator's robots on its map, from the poses "
+    "they publish (ROBOT/pose, ROBOT/destination, person/pose: geometry_msgs/Pose2D).",
+)
+def view(ros: str, namespace: str | None, port: int, discover: float, list_only: bool, world_file: str | None) -> None:
     """Watch a controller that runs elsewhere on the ROS graph: its live view (the page it
     publishes on live_view/page, fed by live_view/events) served on this machine's 127.0.0.1.
     The environment says where the graph is (ROS_MASTER_URI; ROS_DOMAIN_ID)."""
     from robosc.debug.remote import Listener, RemoteError, find_robots, watch
 
+    poses = _poses(world_file) if world_file is not None else None
     try:
         listener = Listener(int(ros), discover)
     except RemoteError as exc:
@@ -39,7 +51,7 @@ def view(ros: str, namespace: str | None, port: int, discover: float, list_only:
                 click.echo(robot)
             raise exit_with(EXIT_OK)
         chosen = _choose(robots, namespace, ros)
-        served = watch(listener, chosen, port)
+        served = watch(listener, chosen, port, poses=poses)
         click.echo(f"live view of {chosen} on {served.url}  (Ctrl-C to stop)", err=True)
         try:
             while listener.process.poll() is None:
@@ -51,6 +63,8 @@ def view(ros: str, namespace: str | None, port: int, discover: float, list_only:
             raise input_problem("the ROS listener ended" + listener.why())
     except RemoteError as exc:
         raise input_problem(str(exc)) from None
+    except ValueError as exc:  # --world: the page is not a fleet's
+        raise input_problem(f"{world_file}: {chosen}: {exc}") from None
     finally:
         listener.close()
     raise exit_with(EXIT_OK)
@@ -72,3 +86,18 @@ def _choose(robots: list[str], namespace: str | None, ros: str) -> str:
         click.echo(f"  {i}. {robot}", err=True)
     index = click.prompt("watch which", type=click.IntRange(1, len(robots)), default=1, err=True)
     return robots[index - 1]
+
+
+def _poses(world_file: str) -> PoseFeed:
+    """The feed that draws a fleet's world for ``--world`` (its errors: file, line, column)."""
+    from robosc.sim.fleet_view import PoseFeed
+    from robosc.sim.world import WorldError, load_world
+
+    try:
+        world = load_world(world_file)
+    except WorldError as exc:
+        raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
+    try:
+        return PoseFeed(world)
+    except ValueError as exc:
+        raise input_problem(str(exc)) from None

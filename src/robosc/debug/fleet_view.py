@@ -27,9 +27,12 @@ def is_fleet(result: SynthesisResult) -> bool:
     return bool(result.network.model.groups)
 
 
-def page_meta(result: SynthesisResult, world_map: dict[str, Any] | None = None) -> dict[str, Any]:
+NO_MAP = '<script type="application/json" id="worldmap">null</script>'  # a page without a world's map
+
+
+def page_meta(result: SynthesisResult) -> dict[str, Any]:
     """What the page knows before any data: the robots (the groups' instances, in order) and the
-    other components, each with its locations and variables, and the map (or None)."""
+    other components, each with its locations and variables."""
     model = result.network.model
     automata = {a.name: a for a in result.network.automata if a.kind is AutomatonKind.COMPONENT}
 
@@ -42,14 +45,40 @@ def page_meta(result: SynthesisResult, world_map: dict[str, Any] | None = None) 
     robots = [entry(c) for instances in model.groups.values() for c in instances]
     grouped = {r["name"] for r in robots}
     others = [entry(c) for c in model.components if c.name not in grouped]
-    return {"model": model.name, "robots": robots, "others": others, "map": world_map}
+    return {"model": model.name, "robots": robots, "others": others}
+
+
+def _script_json(value: Any) -> str:
+    return json.dumps(value, sort_keys=True, allow_nan=False).replace("</", "<\\/")
 
 
 def render_fleet_page(result: SynthesisResult, world_map: dict[str, Any] | None = None) -> str:
     """The page (HTML, self-contained) for ``result``'s fleet; ``world_map`` from
     :func:`robosc.sim.fleet_view.fleet_map` draws the map."""
     model = result.network.model
-    meta = page_meta(result, world_map)
-    meta_json = json.dumps(meta, sort_keys=True).replace("</", "<\\/")
     template = environment("robosc.debug").get_template("fleet.html.j2")
-    return template.render(model=model.name, source=Path(model.path).name, meta_json=meta_json, mapped=world_map is not None)
+    page = template.render(model=model.name, source=Path(model.path).name, meta_json=_script_json(page_meta(result)),
+                           map_json="null")
+    return page if world_map is None else with_map(page, world_map)
+
+
+def with_map(page: str, world_map: dict[str, Any]) -> str:
+    """A fleet's page without a map (a coordinator's, as it publishes it) with ``world_map``;
+    ValueError for a page that is not a fleet's or has a map already."""
+    if page.count(NO_MAP) != 1:
+        raise ValueError("the page is not a fleet coordinator's live view (or it has a map already)")
+    return page.replace(NO_MAP, NO_MAP.replace(">null<", ">" + _script_json(world_map) + "<"))
+
+
+def robots_on(page: str) -> list[str]:
+    """The robots a fleet's page shows, in order (ValueError for a page that is not a fleet's)."""
+    start = page.find('<script type="application/json" id="meta">')
+    end = page.find("</script>", start)
+    if start < 0 or end < 0:
+        raise ValueError("the page is not a fleet coordinator's live view")
+    text = page[start + len('<script type="application/json" id="meta">') : end].replace("<\\/", "</")
+    try:
+        meta = json.loads(text)
+        return [str(r["name"]) for r in meta["robots"]]
+    except (ValueError, KeyError, TypeError):
+        raise ValueError("the page is not a fleet coordinator's live view") from None

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from robosc.codegen.templating import environment
 from robosc.debug.diagram import Diagram, diagrams, svg
+from robosc.debug.fleet_view import is_fleet, render_fleet_page
 from robosc.record import record
 from robosc.synthesis.result import SynthesisResult
 
@@ -58,3 +59,9 @@ def render_page(result: SynthesisResult) -> str:
     return template.render(
         robot=model.name, cards=cards, plants=plants, meta_json=meta_json, source=Path(model.path).name
     )
+
+
+def live_page(result: SynthesisResult) -> str:
+    """The page a node serves and publishes: a fleet's page (robosc.debug.fleet_view) for a
+    model with groups of instances, which a fleet's coordinator runs; else the automata's."""
+    return render_fleet_page(result) if is_fleet(result) else render_page(result)

@@ -14,7 +14,7 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, Any, Protocol
 
 from robosc import children
 from robosc.jsonlines import LinePeer, PeerGone
@@ -101,9 +101,29 @@ def find_robots(listener: Listener, timeout: float = 60.0) -> list[str]:
     return [str(r) for r in robots] if isinstance(robots, list) else []
 
 
-def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float = 20.0) -> Any:
+class Poses(Protocol):
+    """What a view adds from pose topics (a fleet's map: robosc.sim.fleet_view.PoseFeed)."""
+
+    def page(self, html: str) -> str:
+        """The page to serve instead of ``html`` (raises RemoteError where it cannot)."""
+
+    def topics(self) -> list[list[str]]:
+        """[name, topic relative to the namespace] of each geometry_msgs/Pose2D topic to follow."""
+
+    def attach(self, publish: Callable[[dict[str, Any]], None]) -> None:
+        """Where the records it makes go (the served view's publish)."""
+
+    def event(self, record: dict[str, Any]) -> None:
+        """Each event record of the controller's, after the page has it."""
+
+    def pose(self, name: str, pose: list[float]) -> None:
+        """A pose that came on the topic named ``name``."""
+
+
+def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float = 20.0, poses: Poses | None = None) -> Any:
     """Serve the live view of the controller in ``namespace`` on 127.0.0.1:``port``; its
-    events follow on a thread of their own. Returns the LiveView (``.url``, ``.close()``)."""
+    events follow on a thread of their own, and with ``poses``, what the pose topics it names
+    say. Returns the LiveView (``.url``, ``.close()``)."""
     from robosc.runtime.onboard.live_server import LiveView
 
     listener.send("watch", namespace=namespace)
@@ -115,10 +135,15 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
 
     nothing = f"no live view page came from {namespace} in {timeout:g} s"
     page = str(listener.expect("page", timeout, nothing, keep).get("html", ""))
+    if poses is not None:
+        page = poses.page(page)
     try:
         view = LiveView(page, port=port, watched=True)  # the page says when the robot goes silent
     except OSError as exc:
         raise RemoteError(f"cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
+    if poses is not None:
+        poses.attach(view.publish)
+        listener.send("poses", poses=poses.topics())
 
     def forward() -> None:
         while True:
@@ -128,12 +153,16 @@ def watch(listener: Listener, namespace: str, port: int = 8765, timeout: float =
             record = message.get("record")
             if message.get("op") == "event" and isinstance(record, dict):
                 show(record)
+            elif message.get("op") == "pose" and poses is not None and isinstance(message.get("pose"), list):
+                poses.pose(str(message.get("name")), message["pose"])
 
     def show(record: dict[str, Any]) -> None:
         if record.get("heartbeat") is True:  # the node is there, though nothing happened
             view.alive()
         else:
             view.publish(record)
+            if poses is not None:
+                poses.event(record)
 
     for record in early:
         show(record)

@@ -10,6 +10,9 @@ middleware, on Python 3.8 and later::
 out: {"op": "robots", "robots": ["/robot1", ...]}   (after discovery)
 in:  {"op": "watch", "namespace": "/robot1"}
 out: {"op": "page", "html": ...}, then {"op": "event", "record": {...}} for each event
+in:  {"op": "poses", "poses": [[name, topic], ...]}   (a fleet's view: topics relative to the
+     namespace watched, "bot1/pose")
+out: {"op": "pose", "name": name, "pose": [x, y, theta]} for each geometry_msgs/Pose2D on them
 in:  {"op": "quit"} (or the end of standard input)
 """
 
@@ -77,6 +80,22 @@ def on_event(out: Out) -> Callable[[Any], None]:
     return event
 
 
+def on_pose(out: Out, name: str) -> Callable[[Any], None]:
+    """The callback of a pose topic (geometry_msgs/Pose2D)."""
+
+    def pose(message: Any) -> None:
+        out.send("pose", name=name, pose=[float(message.x), float(message.y), float(message.theta)])
+
+    return pose
+
+
+def poses_of(message: Dict[str, Any]) -> List[List[str]]:
+    """The [name, topic] pairs of a watch line's ``poses`` (others are left out)."""
+    found = message.get("poses")
+    pairs = found if isinstance(found, list) else []
+    return [[str(p[0]), str(p[1])] for p in pairs if isinstance(p, list) and len(p) == 2]
+
+
 SETTLE = 1.0  # seconds without a new controller before discovery counts as done
 
 
@@ -98,15 +117,22 @@ def discover_robots(look: Callable[[], List[str]], seconds: float) -> List[str]:
             return robots
 
 
-def serve(out: Out, robots: List[str], watch: Callable[[str], None]) -> None:
-    """Say which robots there are, then watch the one asked for, until told to quit."""
+def serve(
+    out: Out, robots: List[str], watch: Callable[[str], None], follow: Callable[[str, List[List[str]]], None]
+) -> None:
+    """Say which robots there are, then watch the one asked for (and follow the pose topics
+    asked for in its namespace), until told to quit."""
     out.send("robots", robots=robots)
+    watched = []  # type: List[str]
     for line in sys.stdin:
         message = record_of(line)
         if message is None:
             continue
         if message.get("op") == "watch":
-            watch(str(message.get("namespace")))
+            watched.append(str(message.get("namespace")))
+            watch(watched[-1])
+        elif message.get("op") == "poses" and watched:
+            follow(watched[-1], poses_of(message))
         elif message.get("op") == "quit":
             break
 
@@ -129,7 +155,13 @@ def ros1(discover: float) -> None:
         keep.append(rospy.Subscriber(topic(namespace, PAGE), String, on_page(out)))
         keep.append(rospy.Subscriber(topic(namespace, EVENTS), String, on_event(out), queue_size=1000))
 
-    serve(out, robots, watch)
+    def follow(namespace: str, poses: List[List[str]]) -> None:
+        from geometry_msgs.msg import Pose2D
+
+        for name, relative in poses:
+            keep.append(rospy.Subscriber(topic(namespace, relative), Pose2D, on_pose(out, name), queue_size=100))
+
+    serve(out, robots, watch, follow)
     rospy.signal_shutdown("robosc view ended")
 
 
@@ -155,10 +187,19 @@ def ros2(discover: float) -> None:
         keep.append(node.create_subscription(String, topic(namespace, PAGE), on_page(out), latched))
         keep.append(node.create_subscription(String, topic(namespace, EVENTS), on_event(out), latched))
 
+    def follow(namespace: str, poses: List[List[str]]) -> None:  # best effort: matches a
+        from geometry_msgs.msg import Pose2D  # robot's sensor-data publisher and a reliable one
+        from rclpy.qos import qos_profile_sensor_data
+
+        for name, relative in poses:
+            keep.append(
+                node.create_subscription(Pose2D, topic(namespace, relative), on_pose(out, name), qos_profile_sensor_data)
+            )
+
     done = threading.Event()
 
     def commands() -> None:
-        serve(out, robots, watch)
+        serve(out, robots, watch, follow)
         done.set()
 
     threading.Thread(target=commands, daemon=True).start()

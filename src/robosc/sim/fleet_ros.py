@@ -36,6 +36,8 @@ from robosc.sim.graph import Graph
 from robosc.sim.world import World
 
 NAMESPACE = "fleet"  # the coordinator's namespace on the simulation's graph
+POSE_SECONDS = 0.2  # simulated seconds between two poses of a robot (and at most POSE_RATE a real second)
+POSE_RATE = 10.0
 
 # (direction, name, perf_counter seconds): an answer published ("out"), a command come ("in")
 Trace = Callable[[str, str, float], None]
@@ -69,6 +71,29 @@ def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[li
     return commands, answers
 
 
+def pose_topics(names: list[str], person: bool, namespace: str = NAMESPACE) -> list[list[str]]:
+    """What the world's side publishes besides the coordinator's topics (geometry_msgs/Pose2D,
+    as robots publish where they are): each robot's pose (``/fleet/bot1/pose``) and where its
+    move ends (``/fleet/bot1/destination``, x NaN while it has none), and the person's position
+    (``/fleet/person/pose``, x NaN while out of sight). The fleet's live view draws them."""
+    topics = [[f"{n}.{what}", f"/{namespace}/{n}/{what}"] for n in names for what in ("pose", "destination")]
+    return topics + ([["person.pose", f"/{namespace}/person/pose"]] if person else [])
+
+
+def poses_of(fleet: FleetWorld) -> dict[str, list[float]]:
+    """The poses of :func:`pose_topics` now, by name."""
+    nan = float("nan")
+    out: dict[str, list[float]] = {}
+    for i, name in enumerate(fleet.names):
+        pose, driver = fleet.sim.bodies[i].pose, fleet.drivers[i]
+        out[f"{name}.pose"] = [pose.x, pose.y, pose.heading]
+        end = driver.path[-1] if driver.doing in ("driving", "stopped") and driver.path else (nan, nan)
+        out[f"{name}.destination"] = [end[0], end[1], 0.0]
+    if fleet.sim.walker is not None:
+        out["person.pose"] = [fleet.sim.person[0], fleet.sim.person[1], 0.0]
+    return out
+
+
 def run_fleet_ros(
     world: World,
     plan: Plan,
@@ -88,13 +113,15 @@ def run_fleet_ros(
     on_end: Callable[[object], None] | None = None,
     jitter: Jitter | None = None,
     on_step: Callable[[FleetWorld], None] | None = None,
+    page: str | None = None,
 ) -> FleetReport:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
     runs once the nodes are started, ``on_end(graph)`` when the run is over, before they are
     stopped; ``trace`` sees every command come and answer sent; ``jitter`` draws the robots'
     speeds and start delays; ``on_step(world)`` runs after every step (the coordinator's event
-    log is ``folder/events/coordinator.jsonl``)."""
+    log is ``folder/events/coordinator.jsonl``); ``page``: the coordinator's live view page
+    (robosc view finds it in /fleet)."""
     names = instances(module)
     check_size(names, robots)
     commands, answers = wiring(plan, names)
@@ -103,13 +130,17 @@ def run_fleet_ros(
         folder = Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     folder.mkdir(parents=True, exist_ok=True)
     package = folder / f"{package_name(plan)}_ros{ros}"
-    generate(plan, ros, "controller", package, None, relative=True)
+    generate(plan, ros, "controller", package, page, relative=True)
     (folder / "events").mkdir(exist_ok=True)
     graph = Graph(ros, folder, domain)
     bridge = None
     try:
         bridge = graph.bridge()
-        bridge.send("setup", robots=[], topics={}, roles=[], scan={}, fleet={"commands": commands, "answers": answers})
+        poses = pose_topics(names, fleet.sim.walker is not None)
+        bridge.send(
+            "setup", robots=[], topics={}, roles=[], scan={},
+            fleet={"commands": commands, "answers": answers, "poses": poses},
+        )
         session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
         params: dict[str, object] = {
             "rate": float(rate),
@@ -156,6 +187,7 @@ def _run(
     ignored = 0
     started = time.monotonic()
     bridge.send("clock", t=sim.time)
+    posed = (-1e9, -1e9)  # (simulated, real) time of the last poses
     while True:
         came = session.arrived(bridge)  # the commands that came since the last step
         if came is None:
@@ -177,6 +209,9 @@ def _run(
                     trace("out", name, time.perf_counter())
             else:
                 ignored += 1  # the model has no such answer
+        if sim.time - posed[0] >= POSE_SECONDS - 1e-9 and time.monotonic() - posed[1] >= 1.0 / POSE_RATE:
+            posed = (sim.time, time.monotonic())
+            bridge.send("poses", poses=poses_of(fleet))
         if on_step is not None:
             on_step(fleet)
         ended = fleet.verdict(tasks, timeout, stall)

@@ -1,27 +1,32 @@
-"""The fleet's live view fed by a simulation: the world's map for the page
-(:func:`fleet_map`), and a feed that hands the page a frame of the world (where each robot and
+"""The fleet's live view fed by a simulation or by pose topics: the world's map for the page
+(:func:`fleet_map`); a feed that hands the page a frame of the world (where each robot and
 the person are, the cells they hold) every few simulated tenths of a second, with the
 coordinator's latest state, and each of the coordinator's events as it comes: from the
 coordinator in this process, or read from the event log the coordinator package writes on ROS
-(:class:`EventTail`)."""
+(:class:`EventTail`); and, for ``robosc view --world``, frames made from the poses the robots
+publish (:class:`PoseFeed`)."""
 
 from __future__ import annotations
 
 import json
+import math
 import os
+import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from robosc.debug.fleet_view import robots_on, with_map
 from robosc.sim.fleet import FleetWorld
 from robosc.sim.world import World
 
 FRAME_SECONDS = 0.2  # simulated seconds between two frames
 
 
-def fleet_map(world: World, robots: int) -> dict[str, Any]:
+def fleet_map(world: World) -> dict[str, Any]:
     """What the page draws of a fleet's world: its size, walls and boxes, the cells (polygons),
-    the waypoints, the door (its two ends), the charger, the robots' homes and the radii."""
+    the waypoints, the door (its two ends), the charger and the radii."""
     fleet = world.fleet
     assert fleet is not None
     person = fleet.person
@@ -33,7 +38,6 @@ def fleet_map(world: World, robots: int) -> dict[str, Any]:
         "waypoints": {name: list(p) for name, p in fleet.waypoints},
         "door": [list(fleet.door.a), list(fleet.door.b)] if fleet.door is not None else None,
         "charger": list(fleet.charger.at) if fleet.charger is not None else None,
-        "homes": [[world.start(i).x, world.start(i).y] for i in range(robots)],
         "robot_radius": world.robot.radius,
         "person_radius": person.radius if person is not None else None,
     }
@@ -92,3 +96,75 @@ class EventTail:
             if isinstance(record, dict):
                 found.append(record)
         return found
+
+
+PUBLISH_SECONDS = 0.1  # real seconds between two frames made from poses
+
+
+class PoseFeed:
+    """``robosc view --world``: a fleet coordinator's page with the world's map, and frames
+    made from the poses the world publishes beside the coordinator (robosc.sim.fleet_ros's
+    pose_topics: ``bot1/pose``, ``bot1/destination``, ``person/pose``, geometry_msgs/Pose2D).
+    A robot is in a frame only when its pose came since the last one: one whose pose stops
+    coming is marked stale on the page. Thread-safe (poses and events come on another thread)."""
+
+    def __init__(self, world: World) -> None:
+        if world.fleet is None:
+            raise ValueError(f"{world.path} is not a fleet's world (it has no 'fleet')")
+        self.world = world
+        self.fleet = world.fleet
+        self.names: list[str] = []
+        self.publish: Callable[[dict[str, Any]], None] | None = None
+        self.lock = threading.Lock()
+        self.fresh: dict[str, dict[str, Any]] = {}  # robot -> its data, come since the last frame
+        self.into: dict[str, str] = {}  # robot -> the cell its move ends in ("": none)
+        self.person: list[float] | None = None
+        self.state: dict[str, Any] | None = None
+        self.time: float | None = None  # the coordinator's latest event's time
+        self.sent = 0.0
+
+    def page(self, html: str) -> str:
+        self.names = robots_on(html)
+        return with_map(html, fleet_map(self.world))
+
+    def topics(self) -> list[list[str]]:
+        pairs = [[f"{n}.{what}", f"{n}/{what}"] for n in self.names for what in ("pose", "destination")]
+        return [*pairs, ["person.pose", "person/pose"]]
+
+    def attach(self, publish: Callable[[dict[str, Any]], None]) -> None:
+        self.publish = publish
+
+    def event(self, record: dict[str, Any]) -> None:
+        with self.lock:
+            if isinstance(record.get("state"), dict):
+                self.state = record["state"]
+            if isinstance(record.get("time"), (int, float)):
+                self.time = float(record["time"])
+
+    def pose(self, name: str, pose: list[float]) -> None:
+        try:
+            x, y, theta = (float(v) for v in pose)
+        except (TypeError, ValueError):
+            return
+        robot, _, what = name.rpartition(".")
+        seen = math.isfinite(x) and math.isfinite(y)
+        with self.lock:
+            if robot == "person" and what == "pose":
+                self.person = [round(x, 3), round(y, 3)] if seen else None
+            elif robot in self.names and what == "destination":
+                self.into[robot] = self.fleet.cell(x, y) if seen else ""
+            elif robot in self.names and what == "pose" and seen and math.isfinite(theta):
+                self.fresh[robot] = {
+                    "x": round(x, 3), "y": round(y, 3), "heading": round(theta, 3), "doing": None,
+                    "cell": self.fleet.cell(x, y), "into": "", "tasks": None, "collided": False,
+                }
+            else:
+                return
+            if time.monotonic() - self.sent < PUBLISH_SECONDS or self.publish is None:
+                return
+            self.sent = time.monotonic()
+            robots = {r: {**data, "into": self.into.get(r, "")} for r, data in self.fresh.items()}
+            self.fresh = {}
+            frame = {"t": self.time, "robots": robots, "person": self.person, "door": None}
+            record = {"time": self.time, "frame": frame, "state": self.state}
+        self.publish(record)

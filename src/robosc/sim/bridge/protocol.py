@@ -10,8 +10,10 @@ simulation -> node:
   a fleet's world (the coordinator's topics, every message std_msgs/Empty):
   {"op": "setup", "robots": [], "topics": {}, "roles": [], "scan": {},
    "fleet": {"commands": [[name, topic, kind], ...], "answers": [[name, topic, kind], ...]}}
-   (kind "none": std_msgs/Empty; "string": std_msgs/String)
+   (kind "none": std_msgs/Empty; "string": std_msgs/String; "poses": [[name, topic], ...], each a
+   geometry_msgs/Pose2D topic: a robot's pose, where its move ends, the person's position)
   {"op": "answer", "name": name, "data": text or null}   (an answer: publish it on its topic)
+  {"op": "poses", "poses": {name: [x, y, theta], ...}}   (x NaN: none, e.g. no move under way)
 node -> simulation:
   {"op": "ready"}
   {"op": "peers", "robots": [connected roles of robot 0, ...]}
@@ -121,6 +123,7 @@ class Setup(object):
         fleet = message.get("fleet") or {}
         self.commands = [(str(n), str(t), str(k)) for n, t, k in fleet.get("commands", [])]  # type: List[Tuple[str, str, str]]
         self.answers = [(str(n), str(t), str(k)) for n, t, k in fleet.get("answers", [])]  # type: List[Tuple[str, str, str]]
+        self.poses = [(str(n), str(t)) for n, t in fleet.get("poses", [])]  # type: List[Tuple[str, str]]
         self.fleet = "fleet" in message
 
 
@@ -237,12 +240,15 @@ class FleetWiring(object):
         publisher: Callable[[str, Any], Any],
         subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
     ) -> None:
+        from geometry_msgs.msg import Pose2D
         from std_msgs.msg import Empty, String
 
         self.kinds = {"none": Empty, "string": String}
         self.publishers = dict(
             (name, (topic, publisher(topic, self.kinds[kind]), kind)) for name, topic, kind in setup.answers
         )
+        self.pose_kind = Pose2D
+        self.poses = dict((name, publisher(topic, Pose2D)) for name, topic in setup.poses)
         self.subscriptions = dict(
             (name, (topic, subscriber(topic, self.kinds[kind], self._order(channel, name))))
             for name, topic, kind in setup.commands
@@ -264,6 +270,11 @@ class FleetWiring(object):
                     if found[2] == "string":
                         out.data = str(message.get("data") or "")
                     found[1].publish(out)
+            elif op == "poses":
+                for name, value in dict(message.get("poses") or {}).items():
+                    pose = self.poses.get(str(name))
+                    if pose is not None and isinstance(value, list) and len(value) == 3:
+                        pose.publish(self.pose_kind(x=finite(value[0]), y=finite(value[1]), theta=finite(value[2])))
 
         return handle
 
