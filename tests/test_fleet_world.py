@@ -81,6 +81,30 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
     assert report.collisions == 0
 
 
+def test_a_closed_door_is_in_the_lidars_way_a_robot_stops_before_it() -> None:
+    """A robot told to go while the door is closed (no coordinator: the world alone) sees the
+    door with its LiDAR, stops short of it and says `stopped`; once the door has opened and it is
+    told to go on, it drives through and arrives, without touching it."""
+    world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"])
+    world.command("bot1.go")
+    said: list[str] = []
+    while not said and world.sim.time < 60:
+        said = [name for name, _ in world.step() if name.startswith("bot1.")]
+    assert said == ["bot1.stopped"], (said, world.sim.time)
+    pose = world.sim.bodies[0].pose
+    door_x = 3.4
+    assert door_x - pose.x - world.sim.world.robot.radius > 0.1, pose  # short of the door
+    assert world.sim.status[0].collided_at is None
+    world.command("open_door")
+    while "door_opened" not in [name for name, _ in world.step()]:
+        pass
+    world.command("bot1.go")
+    while not (said := [name for name, _ in world.step() if name.startswith("bot1.")]):
+        assert world.sim.time < 120
+    assert said == ["bot1.arrived"] and world.fleet.cell(*(lambda p: (p.x, p.y))(world.sim.bodies[0].pose)) == "c1"
+    assert all(s.collided_at is None for s in world.sim.status)
+
+
 @pytest.mark.parametrize(
     ("change", "line", "message"),
     [

@@ -209,6 +209,27 @@ class Driver:
         return any(scan[(centre + k) % beams] < reach for k in range(-half, half + 1))
 
 
+def door_in_scan(scan: list[float], pose: Pose, a: tuple[float, float], b: tuple[float, float]) -> list[float]:
+    """``scan`` (ranges[0] ahead, counter-clockwise, from ``pose``) with the door, the segment
+    ``a``-``b``, in it: each beam that meets the door sees it where it is nearer."""
+    beams = len(scan)
+    (ax, ay), (bx, by) = a, b
+    ex, ey = bx - ax, by - ay
+    out = list(scan)
+    for k in range(beams):
+        angle = pose.heading + 2 * math.pi * k / beams
+        dx, dy = math.cos(angle), math.sin(angle)
+        denominator = dx * ey - dy * ex
+        if abs(denominator) < 1e-12:
+            continue  # along the door
+        wx, wy = ax - pose.x, ay - pose.y
+        distance = (wx * ey - wy * ex) / denominator  # along the beam
+        share = (wx * dy - wy * dx) / denominator  # along the door, 0 .. 1 on it
+        if distance > 0.0 and 0.0 <= share <= 1.0 and distance < out[k]:
+            out[k] = distance
+    return out
+
+
 class DoorSim:
     """The door: closed, opening, open or closing; it answers when it has opened or closed."""
 
@@ -281,9 +302,13 @@ class FleetWorld:
         detector, which says the name of the cell the person is in ("" for none)."""
         sim = self.sim
         before = [(b.pose.x, b.pose.y) for b in sim.bodies]
+        door = self.fleet.door if self.door is not None and self.door.state != "open" else None
         for message in sim.step():
-            if message.role == "scan":
-                self.scans[message.robot] = message.value
+            if message.role == "scan":  # a door not open is in the LiDAR's way
+                scan = message.value
+                if door is not None:
+                    scan = door_in_scan(scan, sim.bodies[message.robot].pose, door.a, door.b)
+                self.scans[message.robot] = scan
         now = sim.time
         answers: list[tuple[str, Any]] = []
         cell = self.fleet.cell(*sim.person) if sim.walker is not None else ""  # no person: nobody seen
