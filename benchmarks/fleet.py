@@ -14,15 +14,17 @@ Run: python benchmarks/fleet.py [--sizes 1 2 4 8 16] [--seconds 20] [--speed 2] 
 
 With ``--world warehouse`` (issue 31): the warehouse's coordinator package
 (``examples/warehouse.rscd`` with N robots, its default parameters) commanding N robots in the
-warehouse's world (``examples/worlds/warehouse.yaml``, the person included) on ROS 2 until each
-has done one task, as ``robosc sim`` runs it, for N = 2, 4, 8 (the world has eight homes):
+warehouse's world (``examples/worlds/warehouse.yaml``, the person included; from 9 robots on
+``warehouse_large.yaml``, the same with sixteen homes) on ROS 2 until each has done one task, as
+``robosc sim`` runs it, for N = 2, 4, 8, 16 (``--speed``: at most that many simulated seconds
+per real second; the physics of 16 robots runs at about 3):
 simulated seconds per wall second, the coordinator's CPU (from /proc), decision latency (an
 answer leaving the simulation -> the next command coming back: bridge -> DDS -> coordinator ->
 DDS -> bridge, median and p99 in wall milliseconds; an answer no command follows before the next
 answer is not counted), messages per wall second (answers and commands), tasks per simulated
 hour, the time each robot stood waiting (mean), collisions and how the run ended.
 
-Run: python benchmarks/fleet.py --world warehouse [--sizes 2 4 8] [--speed 4]
+Run: python benchmarks/fleet.py --world warehouse [--sizes 2 4 8 16] [--speed 4]
 """
 
 from __future__ import annotations
@@ -106,7 +108,7 @@ def warehouse_run(robots: int, speed: float, ros: int) -> dict:
     path = ROOT / "examples" / "warehouse.rscd"
     text = path.read_text().replace("component bot[3]", f"component bot[{robots}]")
     plan = plan_supervisor(synthesize_model(check_text(text, path=str(path)).model))
-    world = load_world(ROOT / "examples" / "worlds" / "warehouse.yaml")
+    world = load_world(ROOT / "examples" / "worlds" / ("warehouse.yaml" if robots <= 8 else "warehouse_large.yaml"))
     cpu: list[float] = []
     events: list[tuple[str, float]] = []
 
@@ -164,7 +166,7 @@ def main() -> None:
     args = parser.parse_args()
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
     if args.world == "warehouse":
-        warehouse(args.sizes or [2, 4, 8], args.speed or 4.0, args.ros)
+        warehouse(args.sizes or [2, 4, 8, 16], args.speed or 4.0, args.ros)
         return
     args.sizes = args.sizes or [1, 2, 4, 8, 16]
     args.speed = args.speed or 2.0

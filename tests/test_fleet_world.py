@@ -81,6 +81,22 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
     assert report.collisions == 0
 
 
+@pytest.mark.parametrize(("name", "homes"), [("warehouse", 8), ("warehouse_large", 16)])
+def test_the_warehouse_worlds_have_a_home_per_robot_and_each_waypoint_in_its_cell(name: str, homes: int) -> None:
+    world = load_world(ROOT / "examples" / "worlds" / f"{name}.yaml")
+    assert world.room_for(homes) is None and f"it has {homes}, and {homes + 1} robots" in str(world.room_for(homes + 1))
+    fleet = world.fleet
+    assert fleet is not None
+    assert {n: fleet.cell(*p) for n, p in fleet.waypoints} == {
+        "door": "depot", "c1": "c1", "c2": "c2", "c3": "c3", "shelf": "shelf"}
+    for i in range(homes):  # every home and lane point in the depot, a robot's width apart
+        start = world.start(i)
+        assert fleet.cell(start.x, start.y) == "depot" and fleet.cell(*fleet.point("lane", start)) == "depot"
+        if i:
+            assert math.dist((start.x, start.y), (world.start(i - 1).x, world.start(i - 1).y)) > 2 * world.robot.radius + 0.2
+    assert fleet.charger is not None and fleet.cell(*fleet.charger.at) == "depot"
+
+
 def test_a_closed_door_is_in_the_lidars_way_a_robot_stops_before_it() -> None:
     """A robot told to go while the door is closed (no coordinator: the world alone) sees the
     door with its LiDAR, stops short of it and says `stopped`; once the door has opened and it is
