@@ -7,17 +7,24 @@ a wall or the door, and every command the coordinator logged was obeyed and answ
 from __future__ import annotations
 
 import json
+import os
 import re
+import subprocess
+import sys
+import time
+import urllib.request
 from pathlib import Path
 
 import pytest
 
-from ros_support import new_domain, ros1_available, ros2_available, unavailable
+from robosc import children
+from ros_support import free_port, new_domain, ros1_available, ros2_available, unavailable
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
 
 from robosc.api import plan_supervisor, synthesize_file
 from robosc.cli.main import main
+from robosc.debug.fleet_view import render_fleet_page
 from robosc.runtime.simulator import load_module
 from robosc.sim.fleet_ros import run_fleet_ros, wiring
 from robosc.sim.world import load_world
@@ -85,12 +92,53 @@ def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path,
         assert gif.n_frames == int(simulated / 2.0) + 1
 
 
-def test_the_warehouse_fleet_runs_on_ros1(tmp_path: Path) -> None:
+def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Path) -> None:
+    """The fleet on ROS 1, watched meanwhile by `robosc view --ros 1 --world` (the coordinator's
+    page and events, the robots' Pose2D topics): every robot shows up on the view's map, in the
+    world's cells, with the coordinator's belief beside it."""
     if not ros1_available():
         unavailable("ROS 1 (Debian's python3-rospy, python3-rosmaster)")
-    plan = plan_supervisor(synthesize_file(MODEL))
-    report = run_fleet_ros(load_world(WORLD), plan, load_module(plan), 1, 3, timeout=2400.0, speed=10.0, folder=tmp_path)
+    result = synthesize_file(MODEL)
+    plan = plan_supervisor(result)
+    port = free_port()
+    viewers: list[subprocess.Popen[bytes]] = []
+    seen: dict[str, set[str]] = {}
+    beliefs: set[str] = set()
+    asked = [0.0]
+
+    def on_start(graph: object) -> None:
+        env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
+        log = open(tmp_path / "view.log", "wb")  # noqa: SIM115 (closed with the process)
+        viewers.append(children.start(
+            [sys.executable, "-m", "robosc", "view", "--ros", "1", "--world", str(WORLD), "--port", str(port)],
+            env={**env, **getattr(graph, "env", {})}, stdout=log, stderr=subprocess.STDOUT,
+        ))
+
+    def on_step(world: object) -> None:  # what the view serves, once a second
+        if time.monotonic() - asked[0] < 1.0:
+            return
+        asked[0] = time.monotonic()
+        try:
+            with urllib.request.urlopen(f"http://127.0.0.1:{port}/state", timeout=0.5) as response:
+                last = json.loads(response.read())
+        except (OSError, ValueError):
+            return
+        for name, robot in ((last or {}).get("frame") or {}).get("robots", {}).items():
+            seen.setdefault(name, set()).add(robot["cell"])
+        beliefs.update(str(v) for k, v in (((last or {}).get("state") or {}).get("automata") or {}).items() if k == "bot1")
+
+    try:
+        report = run_fleet_ros(
+            load_world(WORLD), plan, load_module(plan), 1, 3, timeout=2400.0, speed=10.0, folder=tmp_path,
+            on_start=on_start, on_step=on_step, page=render_fleet_page(result),
+        )
+    finally:
+        children.stop(viewers)
     assert report.ok, report.why + "\n" + "\n".join(p.read_text()[-3000:] for p in (tmp_path / "logs").glob("*.log"))
     assert report.collisions == 0 and report.ignored == 0
     assert all(s.tasks >= 1 for s in report.robots)
     check_answered(logged(tmp_path), ("bot1", "bot2", "bot3"), report.simulated)
+    view_log = (tmp_path / "view.log").read_text()
+    assert sorted(seen) == ["bot1", "bot2", "bot3"], (seen, view_log[-2000:])
+    assert set().union(*seen.values()) <= {"depot", "c1", "c2", "c3", "shelf"} and "depot" in set().union(*seen.values())
+    assert beliefs and beliefs <= {loc.name for a in result.network.automata if a.name == "bot1" for loc in a.locations}
