@@ -54,7 +54,6 @@ class Graph:
         self.logs = folder / "logs"
         self.logs.mkdir(parents=True, exist_ok=True)
         self.processes: list[tuple[str, subprocess.Popen[bytes]]] = []
-        self.bridge_copied = False
         self.ros1_python = ros1_python or os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
         base = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "PYTHON", "AMENT_", "RMW_"))}
         base["PYTHONUNBUFFERED"] = "1"
@@ -102,9 +101,8 @@ class Graph:
         """The simulator's node (or, in a fleet's world, a robot's driver: ``process`` names it
         in the logs and in ``failed()``, ``node`` on the graph)."""
         folder = self.folder / "bridge"
-        if not self.bridge_copied:  # once per graph (a folder kept from an earlier run gets this one's)
+        if not (folder / BRIDGE_PACKAGE).exists():
             copy_bridge(folder)
-            self.bridge_copied = True
         python = self.ros1_python if self.ros == 1 else sys.executable
         env = {**self.env, "PYTHONPATH": str(folder), "ROBOSC_SIM_NODE": node}
         return Bridge(self._start(process, [python, "-m", f"{BRIDGE_PACKAGE}.ros{self.ros}"], env, pipe=True))
