@@ -1,9 +1,8 @@
 """A fleet in one world on real middleware, as it would be deployed: `robosc sim` on the
-warehouse's world starts the generated coordinator package (one node, namespace /fleet), a
-driver node per robot and the simulator's node (the door, the person's detector), each offering
-its topics under that namespace; the coordinator runs on the simulation's /clock. Every robot
-does its task, none touches another, a wall or the door, and every command the coordinator
-logged was obeyed and answered over ROS."""
+warehouse's world starts the generated coordinator package (one node, namespace /fleet) and the
+simulator's node, which offers each robot's driver and the door under that namespace; the
+coordinator runs on the simulation's /clock. Every robot does its task, none touches another,
+a wall or the door, and every command the coordinator logged was obeyed and answered over ROS."""
 
 from __future__ import annotations
 
@@ -14,7 +13,6 @@ import subprocess
 import sys
 import time
 import urllib.request
-import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -108,13 +106,7 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     beliefs: set[str] = set()
     asked = [0.0]
 
-    offered: dict[str, list[str]] = {}
-
     def on_start(graph: object) -> None:
-        master = xmlrpc.client.ServerProxy(getattr(graph, "env", {})["ROS_MASTER_URI"])
-        publishers, subscribers, _ = master.getSystemState("/test")[2]
-        offered.update({f"pub {t}": sorted(n) for t, n in publishers if t.startswith("/fleet/")})
-        offered.update({f"sub {t}": sorted(n) for t, n in subscribers if t.startswith("/fleet/")})
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
         log = open(tmp_path / "view.log", "wb")  # noqa: SIM115 (closed with the process)
         viewers.append(children.start(
@@ -146,10 +138,6 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     assert report.collisions == 0 and report.ignored == 0
     assert all(s.tasks >= 1 for s in report.robots)
     check_answered(logged(tmp_path), ("bot1", "bot2", "bot3"), report.simulated)
-    # each robot's topics are its own driver node's; the door's and the detector's the simulator's
-    assert offered["pub /fleet/bot2/arrived"] == ["/bot2_driver"] and offered["pub /fleet/bot2/pose"] == ["/bot2_driver"]
-    assert "/bot3_driver" in offered["sub /fleet/bot3/go"] and "/bot1_driver" not in offered["sub /fleet/bot3/go"]
-    assert offered["pub /fleet/door_opened"] == ["/robosc_sim"] and offered["pub /fleet/person_cell"] == ["/robosc_sim"]
     view_log = (tmp_path / "view.log").read_text()
     assert sorted(seen) == ["bot1", "bot2", "bot3"], (seen, view_log[-2000:])
     assert set().union(*seen.values()) <= {"depot", "c1", "c2", "c3", "shelf"} and "depot" in set().union(*seen.values())
