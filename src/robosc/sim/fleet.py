@@ -127,6 +127,10 @@ class Driver:
             self.path = [self._via(), self.fleet.charger.at]
             self.doing = "docking"
 
+    def destination(self) -> tuple[float, float] | None:
+        """Where the move under way ends (the robot holds its cell until it arrives), or None."""
+        return self.path[-1] if self.doing in ("driving", "stopped") and self.path else None
+
     def _via(self) -> tuple[float, float]:
         """The point between this robot's home and the charger (home + the charger's via)."""
         assert self.fleet.charger is not None
@@ -385,9 +389,8 @@ class FleetWorld:
         robots: dict[str, Any] = {}
         for i, name in enumerate(self.names):
             pose, driver = self.sim.bodies[i].pose, self.drivers[i]
-            into = ""
-            if driver.doing in ("driving", "stopped") and driver.path:
-                into = self.fleet.cell(*driver.path[-1])
+            end = driver.destination()
+            into = self.fleet.cell(*end) if end is not None else ""
             robots[name] = {
                 "x": round(pose.x, 3), "y": round(pose.y, 3), "heading": round(pose.heading, 3),
                 "doing": driver.doing, "cell": self.fleet.cell(pose.x, pose.y), "into": into,

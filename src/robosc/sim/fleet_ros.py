@@ -85,9 +85,9 @@ def poses_of(fleet: FleetWorld) -> dict[str, list[float]]:
     nan = float("nan")
     out: dict[str, list[float]] = {}
     for i, name in enumerate(fleet.names):
-        pose, driver = fleet.sim.bodies[i].pose, fleet.drivers[i]
+        pose = fleet.sim.bodies[i].pose
         out[f"{name}.pose"] = [pose.x, pose.y, pose.heading]
-        end = driver.path[-1] if driver.doing in ("driving", "stopped") and driver.path else (nan, nan)
+        end = fleet.drivers[i].destination() or (nan, nan)
         out[f"{name}.destination"] = [end[0], end[1], 0.0]
     if fleet.sim.walker is not None:
         out["person.pose"] = [fleet.sim.person[0], fleet.sim.person[1], 0.0]
