@@ -75,9 +75,11 @@ def pose_topics(names: list[str], person: bool, namespace: str = NAMESPACE) -> l
     """What the world's side publishes besides the coordinator's topics (geometry_msgs/Pose2D,
     as robots publish where they are): each robot's pose (``/fleet/bot1/pose``) and where its
     move ends (``/fleet/bot1/destination``, x NaN while it has none), and the person's position
-    (``/fleet/person/pose``, x NaN while out of sight). The fleet's live view draws them."""
-    topics = [[f"{n}.{what}", f"/{namespace}/{n}/{what}"] for n in names for what in ("pose", "destination")]
-    return topics + ([["person.pose", f"/{namespace}/person/pose"]] if person else [])
+    (``/fleet/person/pose``, x NaN while out of sight). The fleet's live view draws them.
+    ``namespace`` "": the names relative to the coordinator's namespace (``bot1/pose``)."""
+    prefix = f"/{namespace}/" if namespace else ""
+    topics = [[f"{n}.{what}", f"{prefix}{n}/{what}"] for n in names for what in ("pose", "destination")]
+    return topics + ([["person.pose", f"{prefix}person/pose"]] if person else [])
 
 
 def poses_of(fleet: FleetWorld) -> dict[str, list[float]]:

@@ -19,6 +19,7 @@ from typing import Any
 
 from robosc.debug.fleet_view import robots_on, with_map
 from robosc.sim.fleet import FleetWorld
+from robosc.sim.fleet_ros import pose_topics
 from robosc.sim.world import World
 
 FRAME_SECONDS = 0.2  # simulated seconds between two frames
@@ -128,8 +129,7 @@ class PoseFeed:
         return with_map(html, fleet_map(self.world))
 
     def topics(self) -> list[list[str]]:
-        pairs = [[f"{n}.{what}", f"{n}/{what}"] for n in self.names for what in ("pose", "destination")]
-        return [*pairs, ["person.pose", "person/pose"]]
+        return pose_topics(self.names, person=True, namespace="")  # the world side's, relative
 
     def attach(self, publish: Callable[[dict[str, Any]], None]) -> None:
         self.publish = publish
