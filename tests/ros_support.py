@@ -97,6 +97,13 @@ def initial_states(model: str | Path) -> dict[str, str]:
     )
 
 
+def logged_events(path: Path) -> list[dict[str, Any]]:
+    """The event records of a node's JSON Lines event log, in order: its state records (``"event":
+    null``, the belief changed without an event) left out."""
+    records = (json.loads(line) for line in path.read_text().splitlines() if line.strip())
+    return [r for r in records if r.get("event") is not None]
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -16,6 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
+from robosc.debug.eventlog import read_log
 from robosc.runtime.onboard.belief import Unknown
 from robosc.runtime.onboard.values import Data
 from robosc.runtime.simulator import load_module
@@ -183,6 +184,32 @@ def test_a_command_leaves_what_it_changes_unconfirmed_until_it_is_acknowledged()
     node.checkpoint()
     assert node.delivery.held(node.outputs["open_door"]) is None
     assert node.supervisor.snapshot()["automata"]["Door"] == "opening" and "a16_Door" not in node.supervisor.unconfirmed
+
+
+def test_the_event_log_says_when_a_command_is_acknowledged_so_no_reader_keeps_it_unconfirmed(tmp_path: Path) -> None:
+    """A command's target is unconfirmed while the command is on its way, so an event decided
+    meanwhile records it as null; once the command is acknowledged the belief changes with no
+    event, and the log gains a state record (``"event": null``) with the state the node holds.
+    Without it a log's reader (the fleet view on ROS) would show the door unconfirmed until
+    the next event, seconds later."""
+    log = tmp_path / "events.jsonl"
+    node = warehouse(event_log=str(log))
+    node.start_recording()
+    assert node.supervisor.perform("open_door")
+    node.checkpoint()
+    for _ in range(5):
+        node.cycle()
+    records = [json.loads(line) for line in log.read_text().splitlines()]
+    assert any(r["event"] and r["state"]["automata"]["Door"] is None for r in records), records  # decided meanwhile
+    assert records[-1]["state"]["automata"]["Door"] is None  # still on its way
+    node.acked = True
+    node.checkpoint()
+    last = json.loads(log.read_text().splitlines()[-1])
+    assert last["event"] is None and last["controllable"] is False and last["data"] is None
+    assert last["state"] == node.supervisor.snapshot() and last["state"]["automata"]["Door"] == "opening"
+    node.checkpoint()  # nothing changed since: no second state record
+    assert json.loads(log.read_text().splitlines()[-1]) == last and len(log.read_text().splitlines()) == len(records) + 1
+    assert [r.event for r in read_log(log)] == [r["event"] for r in records if r["event"]]  # events' readers skip it
 
 
 def test_a_command_not_acknowledged_in_time_leaves_its_robot_unconfirmed_and_asked() -> None:

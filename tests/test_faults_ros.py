@@ -22,7 +22,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from ros_support import ROS1_PYTHON, Ros1, Ros2, build_package, wait_until
+from ros_support import ROS1_PYTHON, Ros1, Ros2, build_package, logged_events, wait_until
 from warehouse_drivers import (
     DRIVER_ROS1,
     DRIVER_ROS2,
@@ -39,7 +39,7 @@ PARAMS = {"rate": 40.0, "seed": 3}
 
 
 def log_of(path: Path) -> list[dict[str, Any]]:
-    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    return logged_events(path)
 
 
 def gos(world: World) -> dict[str, int]:

@@ -9,14 +9,13 @@ every robot gets past the shelf (no deadlock)."""
 
 from __future__ import annotations
 
-import json
 import os
 import shutil
 import time
 from pathlib import Path
 from typing import Any
 
-from ros_support import Ros1, Ros2, initial_states, unavailable
+from ros_support import Ros1, Ros2, initial_states, logged_events, unavailable
 from test_build import COLCON, in_workspace, run
 
 MODEL = "docs/models/warehouse_zero_time.rscd"
@@ -85,7 +84,7 @@ def test_replay_catches_what_the_warehouse_forbids() -> None:
 
 
 def logged(path: Path) -> list[str]:
-    return [json.loads(line)["event"] for line in path.read_text().splitlines()]
+    return [r["event"] for r in logged_events(path)]
 
 
 def check_run(log: Path, received: dict[str, list[str]]) -> None:

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from robosc import children
-from ros_support import free_port, new_domain, ros1_available, ros2_available, unavailable
+from ros_support import free_port, logged_events, new_domain, ros1_available, ros2_available, unavailable
 
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
 
@@ -36,7 +36,7 @@ LEGS = 8  # the warehouse task's moves
 
 
 def logged(folder: Path) -> list[dict[str, object]]:
-    return [json.loads(line) for line in (folder / "events" / "coordinator.jsonl").read_text().splitlines()]
+    return logged_events(folder / "events" / "coordinator.jsonl")
 
 
 def check_answered(events: list[dict[str, object]], robots: tuple[str, ...], simulated: float) -> None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ros_support import ROOT, Ros1, build_package, initial_states
+from ros_support import ROOT, Ros1, build_package, initial_states, logged_events
 
 
 def test_maze_solver_turns_left_at_a_wall_and_survives_malformed_scans(ros1: Ros1, tmp_path: Path) -> None:
@@ -111,7 +111,7 @@ done(report)
     assert 0.15 in result["resumed"]
     assert result["unsafe"] and set(result["unsafe"]) == {0.0}, "moved while unsafe"
     assert node.poll() is None
-    events = [json.loads(line) for line in event_log.read_text().splitlines()]
+    events = logged_events(event_log)
     names = [e["event"] for e in events]
     assert "stop" in names and "move" in names and "halt" in names
     stop_at = names.index("stop")
@@ -147,10 +147,12 @@ def work(goal):
         cancelled.append(goal.goal)
         server.set_preempted()
         return
-    if FED is not None:  # the result only once the controller has the feedback: actionlib's
-        FED.wait(10)  # feedback and result come on two topics, in either order under load
-    else:
-        rospy.sleep(0.1)
+    # the result only once the controller has the feedback: actionlib's feedback and result
+    # come on two topics, in either order under load
+    if FED is not None:
+        FED.wait(10)
+    else:  # the controller's state says it has it
+        wait_for(lambda: state.value("Arm.progress") == 3, 10)
     server.set_succeeded(TestResult(result=42))
 
 server = actionlib.SimpleActionServer("/arm/work", TestAction, execute_cb=work, auto_start=False)
@@ -379,20 +381,30 @@ def test_node_serves_the_live_view(ros1: Ros1, tmp_path: Path) -> None:
     assert wait_until(lambda: state() is not None, 20), ros1.processes.output()
     with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=2) as response:
         assert 'id="Platform::ready"' in response.read().decode()
-    ros1.client(
+    # the robot listens while the page is read: once it is gone, the command it was sent is
+    # unconfirmed (its topic lost its subscriber), and the page's last record says so
+    last = ros1.client(
         """
+import urllib.request
 start()
 lefts = Recorder("/rotate_left", Int16)  # the robot listens: the node sends it commands
 scan_pub = publisher("/scan", LaserScan)
 scan_pub.publish(scan([0.3] + [5.0] * 359))
 assert wait_for(lambda: lefts.messages(), 10), "no turn"
-done({})
-""",
+
+def page_state():
+    with urllib.request.urlopen("http://127.0.0.1:%d/state", timeout=1) as response:
+        return json.loads(response.read()) or {}
+
+assert wait_for(lambda: page_state().get("event") == "turn_left", 10)
+done(page_state())
+"""
+        % port,
         reports={"": initial_states("examples/maze_solver.rscd")},
     )
-    assert wait_until(lambda: (state() or {}).get("event") == "turn_left", 10)
-    last = state()
-    assert last is not None and last["state"]["automata"]["Platform"] == "turning"  # type: ignore[index]
+    assert last["event"] == "turn_left" and last["state"]["automata"]["Platform"] == "turning"
+    assert wait_until(lambda: (state() or {}).get("event", "") is None, 10)  # a state record: the robot is gone
+    assert (state() or {})["state"]["automata"]["Platform"] is None
     assert node.poll() is None
 
 

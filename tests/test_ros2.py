@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
-from ros_support import ROOT, Ros2, build_package, initial_states, laser_scan
+from ros_support import ROOT, Ros2, build_package, initial_states, laser_scan, logged_events
 
 
 def _state(states: list[Any]) -> dict[str, Any]:
@@ -118,7 +118,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
     unsafe = speeds(0.5)
     assert unsafe and set(unsafe) == {0.0}, "moved while unsafe"
     assert node.poll() is None
-    events = [json.loads(line) for line in event_log.read_text().splitlines()]
+    events = logged_events(event_log)
     names = [e["event"] for e in events]
     assert {"stop", "move", "halt", "scan"} <= set(names)
 

@@ -1,5 +1,9 @@
 """The event log: one record per event (time, event, controllable, data, the state after it).
 
+A generated node also writes *state records*, whose ``event`` is null, when its belief
+changed without an event (a command acknowledged, a robot unconfirmed); the readers here
+skip them: they are the events' log.
+
 Written as JSON Lines by the simulator and by generated nodes (their ``event_log``
 parameter); also as MCAP (JSON-encoded messages on the channel ``/robosc/events``,
 with a JSON schema) so that Foxglove and the ROS bag tools open it.
@@ -61,9 +65,12 @@ class Record:
         }
 
 
-def _record(raw: Any, where: str) -> Record:
+def _record(raw: Any, where: str) -> Record | None:
+    """The event record ``raw``; None for a state record (``"event": null``)."""
     if not isinstance(raw, dict):
         raise LogError(f"{where}: not an event record (a JSON object)")
+    if "event" in raw and raw["event"] is None:
+        return None
     try:
         time = raw["time"]
         event = raw["event"]
@@ -122,7 +129,9 @@ def read_log(path: str | Path) -> list[Record]:
             raise LogError(f"{path}:{number}:{error.colno}: not JSON: {error.msg}") from None
         except RecursionError:
             raise LogError(f"{path}:{number}:1: JSON nested too deeply") from None
-        records.append(_record(raw, f"{path}:{number}:1"))
+        found = _record(raw, f"{path}:{number}:1")
+        if found is not None:
+            records.append(found)
     return records
 
 
@@ -132,7 +141,9 @@ def _read_mcap(handle: BinaryIO, name: str) -> Iterator[Record]:
 
     try:
         for _, channel, message in make_reader(handle).iter_messages(topics=[CHANNEL]):
-            yield _record(json.loads(message.data), f"{name}: message at {message.log_time} ns on {channel.topic}")
+            found = _record(json.loads(message.data), f"{name}: message at {message.log_time} ns on {channel.topic}")
+            if found is not None:
+                yield found
     except RecursionError:
         raise LogError(f"{name}: a message's JSON is nested too deeply") from None
     except (McapError, json.JSONDecodeError, ValueError) as error:

@@ -290,6 +290,8 @@ class NodeCore(object):
         if changes == self.health_seen:
             return  # nothing health() shows has changed
         self.health_seen = changes
+        if self.recorder is not None and self.supervisor.observer is not None:
+            self.recorder.settled()  # a belief changed without an event (a command acknowledged, ...)
         health = self.health()
         if health != self.reported:
             before = self.reported

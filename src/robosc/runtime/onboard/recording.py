@@ -39,7 +39,13 @@ class Gated(object):
 
 class Recorder(object):
     """An observer for the supervisor: hands each event, with its time, data and the
-    resulting state, to every sink that wants it. A failing sink is reported, never fatal."""
+    resulting state, to every sink that wants it. A failing sink is reported, never fatal.
+
+    The state can also change without an event: a command's target is unconfirmed while the
+    command is on its way (ROS 2) and known once it is acknowledged, a robot becomes
+    unconfirmed when its driver goes silent or known when it reports. :meth:`settled` hands
+    such a change on as a *state record*, one whose ``event`` is null, so that a log or a page
+    never keeps showing a belief the node no longer holds."""
 
     def __init__(
         self, supervisor: Any, sinks: Iterable[Callable[[dict[str, Any]], Any]], clock: Callable[[], float] = time.time
@@ -47,6 +53,17 @@ class Recorder(object):
         self.supervisor = supervisor
         self.sinks = list(sinks)
         self.clock = clock
+        self.shown: Optional[dict[str, Any]] = None  # the state in the last record handed on
+
+    def settled(self) -> None:
+        """A state record, if the state differs from the last record's and any sink wants it."""
+        sinks = [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]
+        if not sinks:
+            return
+        state = self.supervisor.snapshot()
+        if state == self.shown:
+            return
+        self._hand(sinks, {"time": round(self.clock(), 6), "event": None, "controllable": False, "data": None, "state": state})
 
     def wanted(self) -> bool:
         """Whether any sink wants records now."""
@@ -63,6 +80,10 @@ class Recorder(object):
             "data": plain(data),
             "state": self.supervisor.snapshot(),
         }
+        self._hand(sinks, record)
+
+    def _hand(self, sinks: list[Callable[[dict[str, Any]], Any]], record: dict[str, Any]) -> None:
+        self.shown = record["state"]
         for sink in sinks:
             try:
                 sink(record)
