@@ -26,7 +26,8 @@ from robosc.api import plan_supervisor, synthesize_file
 from robosc.cli.main import main
 from robosc.debug.fleet_view import render_fleet_page
 from robosc.runtime.simulator import load_module
-from robosc.sim.fleet_ros import run_fleet_ros, wiring
+from robosc.sim.bridge.protocol import Whereabouts
+from robosc.sim.fleet_ros import reports, run_fleet_ros, wiring
 from robosc.sim.world import load_world
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -72,6 +73,29 @@ def test_wiring_is_the_coordinators_topics_under_its_namespace() -> None:
     assert len(commands) == 3 * 2 + 2 and len(answers) == 3 * 3 + 2 + 1
 
 
+def test_each_driver_of_the_world_knows_where_its_component_is_from_what_went_by() -> None:
+    """The report each simulated driver gives (std_srvs/Trigger robosc/report/<component>)
+    follows the model's moves over the commands it obeyed and the answers it gave."""
+    plan = plan_supervisor(synthesize_file(MODEL))
+    commands, answers = wiring(plan, ["bot1", "bot2", "bot3"])
+    table = reports(plan, commands, answers)
+    assert sorted(table) == ["Door", "bot1", "bot2", "bot3"]  # the person is told by its detector
+    assert table["bot2"]["service"] == "/fleet/robosc/report/bot2" and table["Door"]["at"] == "closed"
+    where = Whereabouts(json.loads(json.dumps(table)))  # as the bridge gets it, one JSON line
+    assert where.where("bot1") == "depot"
+    for name, expected in (("bot1.go", "to_out1"), ("bot1.stopped", "stopped_out1"), ("bot1.go", "to_out1"),
+                           ("bot1.arrived", "out1"), ("bot1.go", "to_out2"), ("bot1.charged", "to_out2"),
+                           ("bot1.arrived", "out2")):
+        where.went(name)
+        assert where.where("bot1") == expected, name  # an answer it cannot give from there moves nothing
+    where.went("bot2.dock")
+    where.went("open_door")
+    assert (where.where("bot2"), where.where("bot3"), where.where("Door")) == ("charging", "depot", "opening")
+    where.went("bot2.charged")
+    where.went("door_opened")
+    assert (where.where("bot2"), where.where("Door")) == ("depot", "open")
+
+
 def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     if not ros2_available():
         unavailable("ROS 2 (pip install '.[ros2]')")
@@ -86,6 +110,10 @@ def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path,
     assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"], out  # with the closest approach to the person
     simulated = float(re.search(r"\(([\d.]+) s simulated", out).group(1))  # type: ignore[union-attr]
     check_answered(logged(folder), ("bot1", "bot2", "bot3"), simulated)
+    # as deployed: the coordinator trusts no initial state; each driver says where it is
+    coordinator = (folder / "logs" / "coordinator.log").read_text()
+    for component in ("bot1", "bot2", "bot3", "Door"):
+        assert f"{component} confirmed by its driver: {'closed' if component == 'Door' else 'depot'}" in coordinator
     from PIL import Image
 
     with Image.open(folder / "fleet.gif") as gif:  # the run's animation: a frame per 2 s simulated
@@ -125,12 +153,16 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
             return
         for name, robot in ((last or {}).get("frame") or {}).get("robots", {}).items():
             seen.setdefault(name, set()).add(robot["cell"])
-        beliefs.update(str(v) for k, v in (((last or {}).get("state") or {}).get("automata") or {}).items() if k == "bot1")
+        automata = ((last or {}).get("state") or {}).get("automata") or {}
+        beliefs.update(str(v) for k, v in automata.items() if k == "bot1" and v is not None)  # null: unconfirmed
 
     try:
         report = run_fleet_ros(
             load_world(WORLD), plan, load_module(plan), 1, 3, timeout=2400.0, speed=10.0, folder=tmp_path,
             on_start=on_start, on_step=on_step, page=render_fleet_page(result),
+            # answers overdue on nearly every move (0.3 s wall): the coordinator asks the robots'
+            # drivers, who say where they are from the commands they obeyed and answers they gave
+            settings={"answer_timeout": 0.3},
         )
     finally:
         children.stop(viewers)
@@ -138,6 +170,12 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     assert report.collisions == 0 and report.ignored == 0
     assert all(s.tasks >= 1 for s in report.robots)
     check_answered(logged(tmp_path), ("bot1", "bot2", "bot3"), report.simulated)
+    coordinator = (tmp_path / "logs" / "coordinator.log").read_text()
+    overdue = re.findall(r"(bot\d): no answer \((bot\d)\.(?:arrived|charged)", coordinator)
+    confirmed = re.findall(r"(bot\d) confirmed by its driver: (\w+)", coordinator)
+    assert len(overdue) >= 3, coordinator[-3000:]
+    # (an answer that comes after all confirms too: one only the command's target gives)
+    assert {c for _, c in confirmed} - {"depot"}, confirmed  # reports from mid-move, from the charger
     view_log = (tmp_path / "view.log").read_text()
     assert sorted(seen) == ["bot1", "bot2", "bot3"], (seen, view_log[-2000:])
     assert set().union(*seen.values()) <= {"depot", "c1", "c2", "c3", "shelf"} and "depot" in set().union(*seen.values())

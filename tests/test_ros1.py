@@ -393,13 +393,12 @@ scan_pub.publish(scan([0.3] + [5.0] * 359))
 assert wait_for(lambda: lefts.messages(), 10), "no turn"
 
 def page_state():
-    with urllib.request.urlopen("http://127.0.0.1:%d/state", timeout=1) as response:
+    with urllib.request.urlopen("http://127.0.0.1:PORT/state", timeout=1) as response:
         return json.loads(response.read()) or {}
 
 assert wait_for(lambda: page_state().get("event") == "turn_left", 10)
 done(page_state())
-"""
-        % port,
+""".replace("PORT", str(port)),
         reports={"": initial_states("examples/maze_solver.rscd")},
     )
     assert last["event"] == "turn_left" and last["state"]["automata"]["Platform"] == "turning"

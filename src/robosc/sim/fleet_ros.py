@@ -71,6 +71,39 @@ def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[li
     return commands, answers
 
 
+REPORT_PREFIX = "robosc/report/"  # + a component: the std_srvs/Trigger service its driver offers
+
+
+def reports(plan: Plan, commands: list[list[str]], answers: list[list[str]], namespace: str = NAMESPACE) -> dict[str, object]:
+    """What each driver of the world's side (a robot's, the door's) answers when the coordinator
+    asks where its component is (the runtime's report service, ``/fleet/robosc/report/bot1``,
+    std_srvs/Trigger): ``{component: {"service": name, "at": its initial location, "moves":
+    {command or answer: [[from (None: any), to], ...]}}}``. A driver knows where it is as a real
+    one does, from the commands it obeyed and the answers it gave: the world's side moves its
+    component by the model's location changes as each goes by."""
+    import ast
+
+    labels = {f.name: f.label for f in plan.fields if f.group == "automata"}
+    initial = {f.label: ast.literal_eval(f.initial) for f in plan.fields if f.group == "automata"}
+    wired = {entry[0] for entry in commands + answers}
+    out: dict[str, dict[str, object]] = {}
+    for event in plan.events:
+        c = event.communication
+        if c is None or c.name not in wired or not event.moves:
+            continue
+        for field, source, target in event.moves:
+            component = labels.get(field)
+            if component is None:
+                continue
+            entry = out.setdefault(component, {
+                "service": f"/{namespace}/{REPORT_PREFIX}{component}", "at": initial[component], "moves": {},
+            })
+            moves = entry["moves"]
+            assert isinstance(moves, dict)
+            moves.setdefault(c.name, []).append([source, target])
+    return dict(out)
+
+
 def pose_topics(names: list[str], person: bool, namespace: str = NAMESPACE) -> list[list[str]]:
     """What the world's side publishes besides the coordinator's topics (geometry_msgs/Pose2D,
     as robots publish where they are): each robot's pose (``/fleet/bot1/pose``) and where its
@@ -116,6 +149,7 @@ def run_fleet_ros(
     jitter: Jitter | None = None,
     on_step: Callable[[FleetWorld], None] | None = None,
     page: str | None = None,
+    settings: dict[str, object] | None = None,
 ) -> FleetReport:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
@@ -123,7 +157,8 @@ def run_fleet_ros(
     stopped; ``trace`` sees every command come and answer sent; ``jitter`` draws the robots'
     speeds and start delays; ``on_step(world)`` runs after every step (the coordinator's event
     log is ``folder/events/coordinator.jsonl``); ``page``: the coordinator's live view page
-    (robosc view finds it in /fleet)."""
+    (robosc view finds it in /fleet); ``settings``: the coordinator's parameters besides the
+    simulation's own (``answer_timeout``, ...)."""
     names = instances(module)
     check_size(names, robots)
     commands, answers = wiring(plan, names)
@@ -141,15 +176,17 @@ def run_fleet_ros(
         poses = pose_topics(names, fleet.sim.walker is not None)
         bridge.send(
             "setup", robots=[], topics={}, roles=[], scan={},
-            fleet={"commands": commands, "answers": answers, "poses": poses},
+            fleet={"commands": commands, "answers": answers, "poses": poses,
+                   "reports": reports(plan, commands, answers)},
         )
         session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
         params: dict[str, object] = {
             "rate": float(rate),
             "seed": seed,
             "event_log": folder / "events" / "coordinator.jsonl",
-            # the simulation makes the robots and the door where the model starts them
-            "trust_initial_state": True,
+            # as deployed: the coordinator trusts nothing it has not been told; the drivers
+            # report where they are, the person's detector says where the person is
+            **(settings or {}),
         }
         graph.controller(package, NAMESPACE, params, process="coordinator")
         if on_start is not None:

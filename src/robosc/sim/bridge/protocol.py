@@ -11,7 +11,10 @@ simulation -> node:
   {"op": "setup", "robots": [], "topics": {}, "roles": [], "scan": {},
    "fleet": {"commands": [[name, topic, kind], ...], "answers": [[name, topic, kind], ...]}}
    (kind "none": std_msgs/Empty; "string": std_msgs/String; "poses": [[name, topic], ...], each a
-   geometry_msgs/Pose2D topic: a robot's pose, where its move ends, the person's position)
+   geometry_msgs/Pose2D topic: a robot's pose, where its move ends, the person's position;
+   "reports": {component: {"service": name, "at": location, "moves": {name: [[from, to], ...]}}}:
+   the std_srvs/Trigger service each driver offers to say where its component is, which it
+   knows from the commands it obeyed and the answers it gave, moved as the model moves it)
   {"op": "answer", "name": name, "data": text or null}   (an answer: publish it on its topic)
   {"op": "poses", "poses": {name: [x, y, theta], ...}}   (x NaN: none, e.g. no move under way)
 node -> simulation:
@@ -124,6 +127,7 @@ class Setup(object):
         self.commands = [(str(n), str(t), str(k)) for n, t, k in fleet.get("commands", [])]  # type: List[Tuple[str, str, str]]
         self.answers = [(str(n), str(t), str(k)) for n, t, k in fleet.get("answers", [])]  # type: List[Tuple[str, str, str]]
         self.poses = [(str(n), str(t)) for n, t in fleet.get("poses", [])]  # type: List[Tuple[str, str]]
+        self.reports = dict(fleet.get("reports") or {})  # type: Dict[str, Dict[str, Any]]
         self.fleet = "fleet" in message
 
 
@@ -229,9 +233,37 @@ class Wiring(object):
         return peer_counts(self.setup.robots, connected, self.setup.roles)
 
 
+class Whereabouts(object):
+    """Where each driver's component is, as the driver knows it: moved by each command it
+    obeys and each answer it gives (before the answer goes out, so that a report asked for
+    after the answer came has it). Thread-safe: commands come on the middleware's threads."""
+
+    def __init__(self, reports: Dict[str, Dict[str, Any]]) -> None:
+        self.lock = threading.Lock()
+        self.at = dict((c, str(r["at"])) for c, r in reports.items())  # type: Dict[str, str]
+        self.moves = {}  # type: Dict[str, List[Tuple[str, Any, str]]]
+        for component, report in reports.items():
+            for name, pairs in dict(report.get("moves") or {}).items():
+                for source, target in pairs:
+                    self.moves.setdefault(str(name), []).append((component, source, str(target)))
+
+    def went(self, name: str) -> None:
+        """The command or answer ``name`` went by: its component moves as the model says."""
+        with self.lock:
+            for component, source, target in self.moves.get(name, ()):
+                if source is None or self.at.get(component) == source:
+                    self.at[component] = target
+                    break
+
+    def where(self, component: str) -> str:
+        with self.lock:
+            return self.at[component]
+
+
 class FleetWiring(object):
     """A fleet's world: the robots' drivers and the door, as the coordinator meets them under
-    its namespace; a subscription per command and a publisher per answer (std_msgs/Empty)."""
+    its namespace; a subscription per command and a publisher per answer (std_msgs/Empty), and
+    the report service of each (``service(name, answer)``, ``answer()`` giving the location)."""
 
     def __init__(
         self,
@@ -239,10 +271,15 @@ class FleetWiring(object):
         channel: Channel,
         publisher: Callable[[str, Any], Any],
         subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
+        service: Callable[[str, Callable[[], str]], Any],
     ) -> None:
         from geometry_msgs.msg import Pose2D
         from std_msgs.msg import Empty, String
 
+        self.whereabouts = Whereabouts(setup.reports)
+        self.services = [
+            service(str(report["service"]), self._where(component)) for component, report in setup.reports.items()
+        ]
         self.kinds = {"none": Empty, "string": String}
         self.publishers = dict(
             (name, (topic, publisher(topic, self.kinds[kind]), kind)) for name, topic, kind in setup.answers
@@ -254,9 +291,15 @@ class FleetWiring(object):
             for name, topic, kind in setup.commands
         )
 
-    @staticmethod
-    def _order(channel: Channel, name: str) -> Callable[[Any], None]:
-        return lambda m: channel.send("order", name=name)
+    def _where(self, component: str) -> Callable[[], str]:
+        return lambda: self.whereabouts.where(component)
+
+    def _order(self, channel: Channel, name: str) -> Callable[[Any], None]:
+        def order(message: Any) -> None:
+            self.whereabouts.went(name)
+            channel.send("order", name=name)
+
+        return order
 
     def handler(self, clock: Callable[[float], None], stamp: Callable[[Any, float], None]) -> Callable[[Dict[str, Any]], None]:
         def handle(message: Dict[str, Any]) -> None:
@@ -266,6 +309,7 @@ class FleetWiring(object):
             elif op == "answer":
                 found = self.publishers.get(str(message.get("name")))
                 if found is not None:
+                    self.whereabouts.went(str(message.get("name")))
                     out = self.kinds[found[2]]()
                     if found[2] == "string":
                         out.data = str(message.get("data") or "")

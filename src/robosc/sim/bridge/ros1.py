@@ -9,7 +9,7 @@ from .protocol import Channel, FleetWiring, Wiring, read_setup
 def main() -> None:
     import rospy
     from rosgraph_msgs.msg import Clock
-    from std_srvs.srv import SetBool, SetBoolResponse
+    from std_srvs.srv import SetBool, SetBoolResponse, Trigger, TriggerResponse
 
     setup = read_setup()
     # every node started after this one runs on the simulation's clock
@@ -27,8 +27,11 @@ def main() -> None:
 
     publisher = lambda name, kind: rospy.Publisher(name, kind, queue_size=10)  # noqa: E731
     subscriber = lambda name, kind, callback: rospy.Subscriber(name, kind, callback)  # noqa: E731
+    def report(name: str, where: Callable[[], str]) -> Any:
+        return rospy.Service(name, Trigger, lambda request: TriggerResponse(True, where()))
+
     if setup.fleet:
-        wiring = FleetWiring(setup, channel, publisher, subscriber)  # type: Any
+        wiring = FleetWiring(setup, channel, publisher, subscriber, report)  # type: Any
     else:
         wiring = Wiring(setup, channel, publisher, subscriber, button)
 

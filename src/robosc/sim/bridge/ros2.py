@@ -13,7 +13,7 @@ def main() -> None:
     from rclpy.qos import QoSProfile, ReliabilityPolicy
     from rclpy.utilities import ok, try_shutdown
     from rosgraph_msgs.msg import Clock
-    from std_srvs.srv import SetBool
+    from std_srvs.srv import SetBool, Trigger
 
     setup = read_setup()
     rclpy.init(args=sys.argv)
@@ -33,8 +33,16 @@ def main() -> None:
 
     publisher = lambda name, kind: node.create_publisher(kind, name, reliable)  # noqa: E731
     subscriber = lambda name, kind, callback: node.create_subscription(kind, name, callback, reliable)  # noqa: E731
+    def report(name: str, where: Callable[[], str]) -> Any:
+        def serve(request: Any, response: Any) -> Any:
+            response.success = True
+            response.message = where()
+            return response
+
+        return node.create_service(Trigger, name, serve)
+
     if setup.fleet:
-        wiring = FleetWiring(setup, channel, publisher, subscriber)  # type: Any
+        wiring = FleetWiring(setup, channel, publisher, subscriber, report)  # type: Any
     else:
         wiring = Wiring(setup, channel, publisher, subscriber, button)
 
