@@ -27,11 +27,11 @@ def main() -> None:
 
     publisher = lambda name, kind: rospy.Publisher(name, kind, queue_size=10)  # noqa: E731
     subscriber = lambda name, kind, callback: rospy.Subscriber(name, kind, callback)  # noqa: E731
-    def report(name: str, where: Callable[[], str]) -> Any:
+    def report_service(name: str, where: Callable[[], str]) -> Any:
         return rospy.Service(name, Trigger, lambda request: TriggerResponse(True, where()))
 
     if setup.fleet:
-        wiring = FleetWiring(setup, channel, publisher, subscriber, report)  # type: Any
+        wiring = FleetWiring(setup, channel, publisher, subscriber, report_service)  # type: Any
     else:
         wiring = Wiring(setup, channel, publisher, subscriber, button)
 

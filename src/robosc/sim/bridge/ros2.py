@@ -33,7 +33,7 @@ def main() -> None:
 
     publisher = lambda name, kind: node.create_publisher(kind, name, reliable)  # noqa: E731
     subscriber = lambda name, kind, callback: node.create_subscription(kind, name, callback, reliable)  # noqa: E731
-    def report(name: str, where: Callable[[], str]) -> Any:
+    def report_service(name: str, where: Callable[[], str]) -> Any:
         def serve(request: Any, response: Any) -> Any:
             response.success = True
             response.message = where()
@@ -42,7 +42,7 @@ def main() -> None:
         return node.create_service(Trigger, name, serve)
 
     if setup.fleet:
-        wiring = FleetWiring(setup, channel, publisher, subscriber, report)  # type: Any
+        wiring = FleetWiring(setup, channel, publisher, subscriber, report_service)  # type: Any
     else:
         wiring = Wiring(setup, channel, publisher, subscriber, button)
 
