@@ -262,6 +262,7 @@ class Ros2:
         rclpy.init(context=self.context, domain_id=self.domain)
         self.node = rclpy.create_node("robosc_test", context=self.context)
         self.executor = SingleThreadedExecutor(context=self.context)
+        self.recorders: dict[str, Any] = {}  # topic -> the subscription record() made
         self.executor.add_node(self.node)
 
     def start(self, package: Path, *ros_args: str, **params: object) -> subprocess.Popen[bytes]:
@@ -293,8 +294,14 @@ class Ros2:
 
     def record(self, kind: type, topic: str) -> list[Any]:
         got: list[Any] = []
-        self.node.create_subscription(kind, topic, got.append, 50)
+        self.recorders[topic] = self.node.create_subscription(kind, topic, got.append, 50)
         return got
+
+    def wait_publishing(self, topic: str, timeout: float = 15) -> None:
+        """Until the node under test's publisher of ``topic`` is matched with the test's recorder
+        of it (a message published before would not reach the test: the topic is volatile)."""
+        recorder = self.recorders[topic]
+        assert self.spin_until(lambda: recorder.get_publisher_count() > 0, timeout), f"nothing publishes {topic}"
 
     def reports(self, states: dict[str, str], namespace: str = "") -> dict[str, str]:
         """Drivers that report where their components are, as a node asks them after its start

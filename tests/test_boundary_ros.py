@@ -216,6 +216,8 @@ def test_ros2_the_layer_forwards_only_exactly_the_allowed_event(ros2: Ros2, tmp_
     correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
     for publisher in (controller, stop, scan, correction):
         ros2.wait_subscribed(publisher, 20)
+    ros2.wait_publishing("/blocked")
+
     def data() -> bool:  # scans come best effort: until the node has had them
         scan.publish(laser_scan([5.0] * 360))
         correction.publish(Float32(data=10.0))

@@ -1,8 +1,9 @@
 """A fleet in one world on real middleware, as it would be deployed: `robosc sim` on the
-warehouse's world starts the generated coordinator package (one node, namespace /fleet) and the
-simulator's node, which offers each robot's driver and the door under that namespace; the
-coordinator runs on the simulation's /clock. Every robot does its task, none touches another,
-a wall or the door, and every command the coordinator logged was obeyed and answered over ROS."""
+warehouse's world starts the generated coordinator package (one node, namespace /fleet), a
+driver node per robot and the simulator's node (the door, the person's detector), each offering
+its topics under that namespace; the coordinator runs on the simulation's /clock. Every robot
+does its task, none touches another, a wall or the door, and every command the coordinator
+logged was obeyed and answered over ROS."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import subprocess
 import sys
 import time
 import urllib.request
+import xmlrpc.client
 from pathlib import Path
 
 import pytest
@@ -134,7 +136,14 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     beliefs: set[str] = set()
     asked = [0.0]
 
+    offered: dict[str, list[str]] = {}
+
     def on_start(graph: object) -> None:
+        master = xmlrpc.client.ServerProxy(getattr(graph, "env", {})["ROS_MASTER_URI"])
+        publishers, subscribers, services = master.getSystemState("/test")[2]
+        offered.update({f"pub {t}": sorted(n) for t, n in publishers if t.startswith("/fleet/")})
+        offered.update({f"sub {t}": sorted(n) for t, n in subscribers if t.startswith("/fleet/")})
+        offered.update({f"srv {t}": sorted(n) for t, n in services if t.startswith("/fleet/")})
         env = {k: v for k, v in os.environ.items() if not k.startswith("ROS_")}
         log = open(tmp_path / "view.log", "wb")  # noqa: SIM115 (closed with the process)
         viewers.append(children.start(
@@ -160,9 +169,9 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
         report = run_fleet_ros(
             load_world(WORLD), plan, load_module(plan), 1, 3, timeout=2400.0, speed=10.0, folder=tmp_path,
             on_start=on_start, on_step=on_step, page=render_fleet_page(result),
-            # answers overdue on nearly every move (0.3 s wall): the coordinator asks the robots'
+            # answers overdue on long moves and charges (1 s wall): the coordinator asks the robots'
             # drivers, who say where they are from the commands they obeyed and answers they gave
-            settings={"answer_timeout": 0.3},
+            settings={"answer_timeout": 1.0},
         )
     finally:
         children.stop(viewers)
@@ -176,6 +185,12 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     assert len(overdue) >= 3, coordinator[-3000:]
     # (an answer that comes after all confirms too: one only the command's target gives)
     assert {c for _, c in confirmed} - {"depot"}, confirmed  # reports from mid-move, from the charger
+    # each robot's topics are its own driver node's; the door's and the detector's the simulator's
+    assert offered["pub /fleet/bot2/arrived"] == ["/bot2_driver"] and offered["pub /fleet/bot2/pose"] == ["/bot2_driver"]
+    assert "/bot3_driver" in offered["sub /fleet/bot3/go"] and "/bot1_driver" not in offered["sub /fleet/bot3/go"]
+    assert offered["pub /fleet/door_opened"] == ["/robosc_sim"] and offered["pub /fleet/person_cell"] == ["/robosc_sim"]
+    assert offered["srv /fleet/robosc/report/bot2"] == ["/bot2_driver"]  # each driver says where its robot is
+    assert offered["srv /fleet/robosc/report/Door"] == ["/robosc_sim"]
     view_log = (tmp_path / "view.log").read_text()
     assert sorted(seen) == ["bot1", "bot2", "bot3"], (seen, view_log[-2000:])
     assert set().union(*seen.values()) <= {"depot", "c1", "c2", "c3", "shelf"} and "depot" in set().union(*seen.values())

@@ -301,6 +301,7 @@ def test_supervision_layer_forwards_allowed_and_blocks_forbidden_commands(ros2: 
     scan = ros2.node.create_publisher(laser_scan([]).__class__, "/scan", 10)
     for publisher in (move, left, scan):
         ros2.wait_subscribed(publisher)
+    ros2.wait_publishing("/blocked")
     forward = Twist()
     forward.linear.x = 0.3
     move.publish(forward)  # before any scan: held
@@ -378,6 +379,7 @@ def test_supervision_layer_forwards_services_and_actions(ros2: Ros2, tmp_path: P
     light = ros2.node.create_client(SetBool, "/robosc/controller/light/set")
     arm = ActionClient(ros2.node, Fibonacci, "/robosc/controller/arm/pick")
     ros2.wait_subscribed(seen)
+    ros2.wait_publishing("/blocked")
     assert ros2.spin_until(lambda: light.service_is_ready() and arm.server_is_ready(), 15)
     assert ros2.spin_until(lambda: _confirmed(states), 10)  # the drivers said where they are
 
@@ -480,6 +482,8 @@ def test_supervision_layer_fails_closed_on_a_shared_topic(ros2: Ros2, tmp_path: 
     correction = ros2.node.create_publisher(Float32, "/line/correction", 10)
     for publisher in (controller, stop, scan, correction):
         ros2.wait_subscribed(publisher)
+    ros2.wait_publishing("/blocked")
+
     def data() -> bool:  # scans come best effort: until the node has them
         scan.publish(laser_scan([5.0] * 360))
         correction.publish(Float32(data=10.0))

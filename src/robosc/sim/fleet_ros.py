@@ -1,8 +1,8 @@
 """A fleet in one world on ROS, as it would be deployed: the generated coordinator package (one
-node, in namespace ``/fleet``) on a private graph (robosc.sim.graph), and the world's robots and
-door behind the simulator's node, which offers under that namespace what each robot's driver
-and the door offer: a topic per command it obeys (``/fleet/bot1/go``, ``/fleet/open_door``) and
-a topic per answer it gives (``/fleet/bot1/arrived``, ``/fleet/door_opened``), std_msgs/Empty,
+node, in namespace ``/fleet``) on a private graph (robosc.sim.graph), a driver node per robot
+(``/bot1_driver``: the robot's topics under that namespace, ``/fleet/bot1/go``,
+``/fleet/bot1/arrived``, its pose) and the simulator's node (``/clock``, the door's topics, the
+person's detector and pose): a topic per command obeyed and per answer given, std_msgs/Empty,
 reliable. The simulation (robosc.sim.fleet.FleetWorld) runs in this process and owns simulated
 time: ``/clock`` advances at every step, and the coordinator runs on it (``use_sim_time``).
 """
@@ -170,16 +170,19 @@ def run_fleet_ros(
     generate(plan, ros, "controller", package, page, relative=True)
     (folder / "events").mkdir(exist_ok=True)
     graph = Graph(ros, folder, domain)
-    bridge = None
+    bridges: dict[str, session.Bridge] = {}  # "" the simulator's node, else a robot's driver
     try:
-        bridge = graph.bridge()
         poses = pose_topics(names, fleet.sim.walker is not None)
-        bridge.send(
-            "setup", robots=[], topics={}, roles=[], scan={},
-            fleet={"commands": commands, "answers": answers, "poses": poses,
-                   "reports": reports(plan, commands, answers)},
-        )
-        session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
+        table = reports(plan, commands, answers)
+        for owner in ["", *names]:  # the simulator's node (clock, door, detector), a driver per robot
+            bridge = graph.bridge(*(("simulator", "robosc_sim") if not owner else (f"driver_{owner}", f"{owner}_driver")))
+            bridges[owner] = bridge
+            mine: dict[str, object] = {key: [e for e in entries if _owner(e[0], names) == owner]
+                                       for key, entries in (("commands", commands), ("answers", answers), ("poses", poses))}
+            mine["reports"] = {c: r for c, r in table.items() if _owner(c + ".", names) == owner}
+            bridge.send("setup", robots=[], topics={}, roles=[], scan={}, fleet=mine)
+        for owner, bridge in bridges.items():
+            session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, _who(owner))
         params: dict[str, object] = {
             "rate": float(rate),
             "seed": seed,
@@ -191,11 +194,12 @@ def run_fleet_ros(
         graph.controller(package, NAMESPACE, params, process="coordinator")
         if on_start is not None:
             on_start(graph)
-        topics = [entry[1] for entry in commands + answers]
-        session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, "the coordinator to connect")
+        for owner, bridge in bridges.items():
+            topics = [e[1] for e in commands + answers if _owner(e[0], names) == owner]
+            session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, f"the coordinator to connect to {_who(owner)}")
         started = time.monotonic()
         ended, ignored = _run(
-            fleet, bridge, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step
+            fleet, bridges, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step
         )
         wall = time.monotonic() - started
         if on_end is not None:
@@ -204,14 +208,25 @@ def run_fleet_ros(
     except session.SessionError as exc:
         raise session.SessionError(f"{exc}\n{graph.output()}") from None
     finally:
-        if bridge is not None:
+        for bridge in bridges.values():
             bridge.close()
         graph.stop()
 
 
+def _owner(name: str, names: list[str]) -> str:
+    """Whose node offers the topic of ``name`` (``bot1.go``, ``bot1.pose``): the robot's driver,
+    or "" for the simulator's node (the door, the detector, the person)."""
+    robot = name.rpartition(".")[0]
+    return robot if robot in names else ""
+
+
+def _who(owner: str) -> str:
+    return f"{owner}'s driver" if owner else "the simulator's node"
+
+
 def _run(
     fleet: FleetWorld,
-    bridge: session.Bridge,
+    bridges: dict[str, session.Bridge],
     graph: Graph,
     answered: set[str],
     tasks: int,
@@ -221,36 +236,41 @@ def _run(
     trace: Trace | None,
     on_step: Callable[[FleetWorld], None] | None = None,
 ) -> tuple[tuple[bool, str], int]:
-    """Steps the world at ``speed`` times real time, passing commands in and answers out."""
+    """Steps the world at ``speed`` times real time, passing commands in and answers out (each
+    through the node that offers its topic)."""
     sim = fleet.sim
     ignored = 0
     started = time.monotonic()
-    bridge.send("clock", t=sim.time)
+    clock = bridges[""]
+    clock.send("clock", t=sim.time)
     posed = (-1e9, -1e9)  # (simulated, real) time of the last poses
     while True:
-        came = session.arrived(bridge)  # the commands that came since the last step
-        if came is None:
-            return (False, "the simulator's node ended"), ignored
-        for message in came:
-            if message.get("op") == "order":
-                if trace is not None:  # when its line came from the simulator's node
-                    trace("in", str(message.get("name")), float(message.get("received", time.perf_counter())))
-                fleet.command(str(message.get("name")))
+        for owner, bridge in bridges.items():
+            came = session.arrived(bridge)  # the commands that came since the last step
+            if came is None:
+                return (False, f"{_who(owner)} ended"), ignored
+            for message in came:
+                if message.get("op") == "order":
+                    if trace is not None:  # when its line came from the node
+                        trace("in", str(message.get("name")), float(message.get("received", time.perf_counter())))
+                    fleet.command(str(message.get("name")))
         died = graph.failed(sim)
         if died is not None:
             return (False, died), ignored
         out = fleet.step()
-        bridge.send("clock", t=sim.time)
+        clock.send("clock", t=sim.time)
         for name, data in out:
             if name in answered:
-                bridge.send("answer", name=name, data=data)
+                bridges[_owner(name, fleet.names)].send("answer", name=name, data=data)
                 if trace is not None:
                     trace("out", name, time.perf_counter())
             else:
                 ignored += 1  # the model has no such answer
         if sim.time - posed[0] >= POSE_SECONDS - 1e-9 and time.monotonic() - posed[1] >= 1.0 / POSE_RATE:
             posed = (sim.time, time.monotonic())
-            bridge.send("poses", poses=poses_of(fleet))
+            poses = poses_of(fleet)
+            for owner, bridge in bridges.items():
+                bridge.send("poses", poses={k: v for k, v in poses.items() if _owner(k, fleet.names) == owner})
         if on_step is not None:
             on_step(fleet)
         ended = fleet.verdict(tasks, timeout, stall)

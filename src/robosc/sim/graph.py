@@ -97,11 +97,15 @@ class Graph:
         self.processes.append((name, process))
         return process
 
-    def bridge(self) -> Bridge:
-        folder = copy_bridge(self.folder / "bridge")
+    def bridge(self, process: str = "simulator", node: str = "robosc_sim") -> Bridge:
+        """The simulator's node (or, in a fleet's world, a robot's driver: ``process`` names it
+        in the logs and in ``failed()``, ``node`` on the graph)."""
+        folder = self.folder / "bridge"
+        if not (folder / BRIDGE_PACKAGE).exists():
+            copy_bridge(folder)
         python = self.ros1_python if self.ros == 1 else sys.executable
-        env = {**self.env, "PYTHONPATH": str(folder)}
-        return Bridge(self._start("simulator", [python, "-m", f"{BRIDGE_PACKAGE}.ros{self.ros}"], env, pipe=True))
+        env = {**self.env, "PYTHONPATH": str(folder), "ROBOSC_SIM_NODE": node}
+        return Bridge(self._start(process, [python, "-m", f"{BRIDGE_PACKAGE}.ros{self.ros}"], env, pipe=True))
 
     def controller(
         self, package: Path, robot: str, params: dict[str, object], process: str | None = None
@@ -126,7 +130,7 @@ class Graph:
         for name, process in self.processes:
             status = process.poll()
             if status is not None and name != "simulator":
-                what = "the controller of " + name if name.startswith("robot") else "the " + name
+                what = "the controller of " + name if name.startswith("robot") else "the " + name.replace("_", " of ", 1)
                 how = f"killed by signal {-status}" if status < 0 else f"exit status {status}"
                 return f"{what} died at {getattr(sim, 'time', 0.0):.1f} s simulated ({how})"
         return None

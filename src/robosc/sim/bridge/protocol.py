@@ -31,6 +31,7 @@ node -> simulation:
 
 import json
 import math
+import os
 import sys
 import threading
 from typing import Any, Callable, Dict, List, Tuple
@@ -39,6 +40,12 @@ from typing import Any, Callable, Dict, List, Tuple
 PUBLISHED = ("scan", "rotate_done", "line_correction", "line_lost", "stop", "continue")
 SUBSCRIBED = ("cmd_vel", "rotate_left", "rotate_right")
 BUTTON = "emergency_stop_button"  # the service (std_srvs/SetBool) that presses the button
+
+
+def node_name() -> str:
+    """The node's name: ROBOSC_SIM_NODE, or robosc_sim (a fleet's world starts one per robot's
+    driver beside the simulator's)."""
+    return os.environ.get("ROBOSC_SIM_NODE") or "robosc_sim"
 
 
 def topic(robot: str, name: str) -> str:

@@ -3,7 +3,7 @@
 import threading
 from typing import Any, Callable
 
-from .protocol import Channel, FleetWiring, Wiring, read_setup
+from .protocol import Channel, FleetWiring, Wiring, node_name, read_setup
 
 
 def main() -> None:
@@ -14,7 +14,7 @@ def main() -> None:
     setup = read_setup()
     # every node started after this one runs on the simulation's clock
     rospy.set_param("/use_sim_time", True)
-    rospy.init_node("robosc_sim", disable_signals=True)
+    rospy.init_node(node_name(), disable_signals=True)
     channel = Channel()
     clock = rospy.Publisher("/clock", Clock, queue_size=10)
 

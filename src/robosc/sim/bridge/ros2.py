@@ -4,7 +4,7 @@ import sys
 import threading
 from typing import Any, Callable
 
-from .protocol import Channel, FleetWiring, Wiring, read_setup, sec_nanosec
+from .protocol import Channel, FleetWiring, Wiring, node_name, read_setup, sec_nanosec
 
 
 def main() -> None:
@@ -17,7 +17,7 @@ def main() -> None:
 
     setup = read_setup()
     rclpy.init(args=sys.argv)
-    node = rclpy.create_node("robosc_sim")
+    node = rclpy.create_node(node_name())
     channel = Channel()
     reliable = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
     clock = node.create_publisher(Clock, "/clock", 10)
