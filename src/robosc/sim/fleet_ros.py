@@ -3,7 +3,9 @@ node, in namespace ``/fleet``) on a private graph (robosc.sim.graph), a driver n
 (``/bot1_driver``: the robot's topics under that namespace, ``/fleet/bot1/go``,
 ``/fleet/bot1/arrived``, its pose) and the simulator's node (``/clock``, the door's topics, the
 person's detector and pose): a topic per command obeyed and per answer given, std_msgs/Empty,
-reliable. The simulation (robosc.sim.fleet.FleetWorld) runs in this process and owns simulated
+reliable, and each driver's report service (``/fleet/robosc/report/bot1``, std_srvs/Trigger),
+which says where its robot (or the door) is. The coordinator trusts no initial state: it asks
+them, as deployed. The simulation (robosc.sim.fleet.FleetWorld) runs in this process and owns simulated
 time: ``/clock`` advances at every step, and the coordinator runs on it (``use_sim_time``).
 """
 
