@@ -30,6 +30,7 @@ from robosc.debug.fleet_view import render_fleet_page
 from robosc.runtime.simulator import load_module
 from robosc.sim.bridge.protocol import Whereabouts
 from robosc.sim.fleet_ros import reports, run_fleet_ros, wiring
+from robosc.sim.graph import BRIDGE_PACKAGE, Graph
 from robosc.sim.world import load_world
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -96,6 +97,21 @@ def test_each_driver_of_the_world_knows_where_its_component_is_from_what_went_by
     where.went("bot2.charged")
     where.went("door_opened")
     assert (where.where("bot2"), where.where("Door")) == ("depot", "open")
+
+
+def test_the_simulators_node_is_copied_once_per_run_over_an_earlier_runs(tmp_path: Path) -> None:
+    """A --record folder kept from an earlier run gets this run's simulator's node (an older one
+    offers no report services: the coordinator would wait for ever), copied once for every node
+    of the run."""
+    package = tmp_path / "bridge" / BRIDGE_PACKAGE
+    package.mkdir(parents=True)
+    (package / "protocol.py").write_text("# an earlier robosc's\n")
+    graph = Graph(2, tmp_path)
+    assert graph.bridge_folder() == tmp_path / "bridge"
+    assert (package / "protocol.py").read_text() == (ROOT / "src/robosc/sim/bridge/protocol.py").read_text()
+    (package / "starting.txt").write_text("a driver node is importing from here")
+    graph.bridge_folder()  # the next robot's driver
+    assert (package / "starting.txt").exists()
 
 
 def test_robosc_sim_runs_the_warehouse_fleet_on_ros2_as_deployed(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -54,6 +54,7 @@ class Graph:
         self.logs = folder / "logs"
         self.logs.mkdir(parents=True, exist_ok=True)
         self.processes: list[tuple[str, subprocess.Popen[bytes]]] = []
+        self.bridge_copied = False
         self.ros1_python = ros1_python or os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
         base = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "PYTHON", "AMENT_", "RMW_"))}
         base["PYTHONUNBUFFERED"] = "1"
@@ -97,12 +98,20 @@ class Graph:
         self.processes.append((name, process))
         return process
 
+    def bridge_folder(self) -> Path:
+        """Where the simulator's node is copied for this graph's nodes to import: once per graph,
+        so that a folder kept from an earlier run gets this run's, and a node still starting is
+        never left without it while the next one is started."""
+        folder = self.folder / "bridge"
+        if not self.bridge_copied:
+            copy_bridge(folder)
+            self.bridge_copied = True
+        return folder
+
     def bridge(self, process: str = "simulator", node: str = "robosc_sim") -> Bridge:
         """The simulator's node (or, in a fleet's world, a robot's driver: ``process`` names it
         in the logs and in ``failed()``, ``node`` on the graph)."""
-        folder = self.folder / "bridge"
-        if not (folder / BRIDGE_PACKAGE).exists():
-            copy_bridge(folder)
+        folder = self.bridge_folder()
         python = self.ros1_python if self.ros == 1 else sys.executable
         env = {**self.env, "PYTHONPATH": str(folder), "ROBOSC_SIM_NODE": node}
         return Bridge(self._start(process, [python, "-m", f"{BRIDGE_PACKAGE}.ros{self.ros}"], env, pipe=True))
