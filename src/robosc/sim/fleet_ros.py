@@ -11,13 +11,16 @@ time: ``/clock`` advances at every step, and the coordinator runs on it (``use_s
 
 from __future__ import annotations
 
+import ast
 import tempfile
 import time
 import types
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from robosc.codegen.ros import generate, package_name, ros_name
+from robosc.runtime.onboard.node import REPORT_PREFIX
 from robosc.runtime.plan import Plan
 from robosc.sim import session
 from robosc.sim.fleet import (
@@ -73,37 +76,28 @@ def wiring(plan: Plan, names: list[str], namespace: str = NAMESPACE) -> tuple[li
     return commands, answers
 
 
-REPORT_PREFIX = "robosc/report/"  # + a component: the std_srvs/Trigger service its driver offers
-
-
-def reports(plan: Plan, commands: list[list[str]], answers: list[list[str]], namespace: str = NAMESPACE) -> dict[str, object]:
+def reports(plan: Plan, commands: list[list[str]], answers: list[list[str]], namespace: str = NAMESPACE) -> dict[str, Any]:
     """What each driver of the world's side (a robot's, the door's) answers when the coordinator
     asks where its component is (the runtime's report service, ``/fleet/robosc/report/bot1``,
     std_srvs/Trigger): ``{component: {"service": name, "at": its initial location, "moves":
     {command or answer: [[from (None: any), to], ...]}}}``. A driver knows where it is as a real
     one does, from the commands it obeyed and the answers it gave: the world's side moves its
     component by the model's location changes as each goes by."""
-    import ast
-
     labels = {f.name: f.label for f in plan.fields if f.group == "automata"}
     initial = {f.label: ast.literal_eval(f.initial) for f in plan.fields if f.group == "automata"}
     wired = {entry[0] for entry in commands + answers}
-    out: dict[str, dict[str, object]] = {}
+    moves: dict[str, dict[str, list[list[str | None]]]] = {}  # component -> communication -> [from, to]s
     for event in plan.events:
         c = event.communication
         if c is None or c.name not in wired or not event.moves:
             continue
         for field, source, target in event.moves:
-            component = labels.get(field)
-            if component is None:
-                continue
-            entry = out.setdefault(component, {
-                "service": f"/{namespace}/{REPORT_PREFIX}{component}", "at": initial[component], "moves": {},
-            })
-            moves = entry["moves"]
-            assert isinstance(moves, dict)
-            moves.setdefault(c.name, []).append([source, target])
-    return dict(out)
+            if field in labels:
+                moves.setdefault(labels[field], {}).setdefault(c.name, []).append([source, target])
+    return {
+        component: {"service": f"/{namespace}/{REPORT_PREFIX}{component}", "at": initial[component], "moves": mine}
+        for component, mine in moves.items()
+    }
 
 
 def pose_topics(names: list[str], person: bool, namespace: str = NAMESPACE) -> list[list[str]]:
@@ -270,9 +264,11 @@ def _run(
                 ignored += 1  # the model has no such answer
         if sim.time - posed[0] >= POSE_SECONDS - 1e-9 and time.monotonic() - posed[1] >= 1.0 / POSE_RATE:
             posed = (sim.time, time.monotonic())
-            poses = poses_of(fleet)
+            mine: dict[str, dict[str, list[float]]] = {owner: {} for owner in bridges}
+            for name, pose in poses_of(fleet).items():
+                mine[_owner(name, fleet.names)][name] = pose
             for owner, bridge in bridges.items():
-                bridge.send("poses", poses={k: v for k, v in poses.items() if _owner(k, fleet.names) == owner})
+                bridge.send("poses", poses=mine[owner])
         if on_step is not None:
             on_step(fleet)
         ended = fleet.verdict(tasks, timeout, stall)
