@@ -57,7 +57,7 @@ class Recorder(object):
 
     def settled(self) -> None:
         """A state record, if the state differs from the last record's and any sink wants it."""
-        sinks = [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]
+        sinks = self._wanting()
         if not sinks:
             return
         state = self.supervisor.snapshot()
@@ -65,12 +65,16 @@ class Recorder(object):
             return
         self._hand(sinks, {"time": round(self.clock(), 6), "event": None, "controllable": False, "data": None, "state": state})
 
+    def _wanting(self) -> list[Callable[[dict[str, Any]], Any]]:
+        """The sinks that want records now."""
+        return [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]
+
     def wanted(self) -> bool:
         """Whether any sink wants records now."""
-        return any(not isinstance(s, Gated) or s.wanted() for s in self.sinks)
+        return bool(self._wanting())
 
     def __call__(self, event: str, controllable: bool, data: Any) -> None:
-        sinks = [s for s in self.sinks if not isinstance(s, Gated) or s.wanted()]
+        sinks = self._wanting()
         if not sinks:
             return
         record = {
