@@ -38,10 +38,6 @@ MODEL = "docs/models/warehouse_zero_time.rscd"
 PARAMS = {"rate": 40.0, "seed": 3}
 
 
-def log_of(path: Path) -> list[dict[str, Any]]:
-    return logged_events(path)
-
-
 def gos(world: World) -> dict[str, int]:
     return dict((r, sum(1 for _, e in world.received if e == r + ".go")) for r in ROBOTS)
 
@@ -54,7 +50,7 @@ def start_coordinator(ros2: Ros2, tmp_path: Path, **params: object) -> tuple[Pat
 
 def check(log: Path, world: World) -> list[str]:
     """The forbidden commands, each with what happened around it."""
-    records = log_of(log)
+    records = logged_events(log)
     found, checked = forbidden(records, world.received, world.sent)
     assert checked > 10, f"only {checked} commands"
     out = []
@@ -131,7 +127,7 @@ def kill_in_the_aisle(driver: subprocess.Popen[bytes], lines: list[dict[str, Any
 def held_in_time(log: Path, stopped_at: float, output: str, why: str) -> None:
     """bot2 is commanded no more than ack_timeout (1 s, and a little) after its driver stopped,
     and the coordinator said why."""
-    decided = [r for r in log_of(log) if r["event"].startswith("bot2.") and r["time"] > stopped_at]
+    decided = [r for r in logged_events(log) if r["event"].startswith("bot2.") and r["time"] > stopped_at]
     assert f"may not have arrived ({why}): bot2 unconfirmed" in output or not decided, output[-3000:]
     late = [r["time"] - stopped_at for r in decided]
     assert all(t < 1.5 for t in late), f"bot2 commanded {late} s after its driver died"
@@ -191,7 +187,7 @@ def test_ros2_duplicated_and_impossible_answers_never_move_the_belief(ros2: Ros2
     assert wire.run(90, spurious), f"{gos(world)}\n{ros2.processes.output()[-3000:]}"
     assert world.spurious_sent >= 1
     assert check(log, world) == []
-    taken = [r["event"] for r in log_of(log) if not r.get("controllable")]
+    taken = [r["event"] for r in logged_events(log) if not r.get("controllable")]
     answers = [name for _, name, duplicate in world.sent if not duplicate]
     assert sorted(taken) == sorted(answers[: len(taken)]) and len(answers) - len(taken) <= 2, (taken, answers)
     ignored = json.loads(health[-1].data)["ignored"] if health else {}
@@ -214,7 +210,7 @@ def test_ros1_a_coordinator_killed_three_ways_never_commands_what_the_robots_for
     client.start()
     kills, node = kill_when_told(control, client, node, lambda: ros1.node(package, event_log=str(log), **PARAMS))
     assert kills == 3 and result["missed"] == [] and result["frozen"] == 0, (kills, result.get("missed"), result.get("frozen"))
-    found, checked = forbidden(log_of(log), result["received"], result["sent"])
+    found, checked = forbidden(logged_events(log), result["received"], result["sent"])
     assert checked > 10 and found == [], found
 
 
@@ -279,9 +275,9 @@ with lock:
     ros1.node(package, event_log=str(log), **PARAMS)
     result = ros1.client(script, timeout=200)
     assert result["spurious"] >= 1
-    found, checked = forbidden(log_of(log), result["received"], result["sent"])
+    found, checked = forbidden(logged_events(log), result["received"], result["sent"])
     assert checked > 10 and found == [], found
-    taken = [r["event"] for r in log_of(log) if not r.get("controllable")]
+    taken = [r["event"] for r in logged_events(log) if not r.get("controllable")]
     answers = [name for _, name, duplicate in result["sent"] if not duplicate]
     assert sorted(taken) == sorted(answers[: len(taken)]) and len(answers) - len(taken) <= 2, (taken, answers)
     assert "ignored" in ros1.processes.output()
