@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from xdist.scheduler import LoadScopeScheduling
 
 import strays
 from robosc.api import CheckResult, check_file
@@ -26,9 +27,10 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 # The tests that start middleware, nodes, browsers or simulations paced in real time: with
-# pytest-xdist (`-n 2 --dist loadgroup`, pyproject's addopts) they all run in one worker, one at a
-# time as without xdist (their ROS domains and ports are those of one process), while the other
-# worker takes the tests that only compute.
+# pytest-xdist (`-n 2`, pyproject's addopts) they all run in one worker, one at a time as without
+# xdist (their ROS domains and ports are those of one process), while the other worker takes the
+# tests that only compute. The scheduler below groups them by their file's name (pytest-xdist's
+# own xdist_group mark is lost on pytest 9, which no longer reads the node id xdist rewrites).
 MIDDLEWARE = {
     "test_belief", "test_boundary_ros", "test_build", "test_codegen_ros", "test_docs", "test_faults_ros",
     "test_fleet_ros", "test_fleet_world", "test_fleet_world_ros", "test_live_server", "test_live_view",
@@ -38,10 +40,17 @@ MIDDLEWARE = {
 _oracle_lines: list[str] = []  # the oracle's summary, as the xdist workers hand it over
 
 
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    for item in items:
-        if item.module is not None and item.module.__name__ in MIDDLEWARE:
-            item.add_marker(pytest.mark.xdist_group("middleware"))
+class MiddlewareInOneWorker(LoadScopeScheduling):  # type: ignore[misc]
+    """pytest-xdist's scheduler that hands each unit of work to one worker whole: every test of
+    a MIDDLEWARE file is in one unit, any other test is a unit of its own."""
+
+    def _split_scope(self, nodeid: str) -> str:
+        return "middleware" if Path(nodeid.split("::", 1)[0]).stem in MIDDLEWARE else nodeid
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> MiddlewareInOneWorker:
+    return MiddlewareInOneWorker(config, log)
 
 
 def _oracle_summary() -> list[str]:

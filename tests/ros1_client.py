@@ -12,7 +12,16 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool, Empty, Float32, Int16, String  # noqa: F401
 
 
+def _fail(kind, value, trace):
+    """A script's failure ends it at once, its traceback printed (rospy's and actionlib's threads
+    would keep the process alive until the test's time limit, the reason unsaid)."""
+    sys.__excepthook__(kind, value, trace)
+    sys.stderr.flush()
+    os._exit(1)
+
+
 def start(name="robosc_test"):
+    sys.excepthook = _fail
     rospy.init_node(name, anonymous=True, disable_signals=True)
     for namespace, states in json.loads(os.environ.get("ROBOSC_TEST_REPORTS") or "{}").items():
         reports(states, namespace)
@@ -82,7 +91,7 @@ def publisher(topic, kind, subscribers=1, timeout=10.0):
     """A publisher, once the node under test has subscribed."""
     pub = rospy.Publisher(topic, kind, queue_size=10)
     if not wait_for(lambda: pub.get_num_connections() >= subscribers, timeout):
-        raise SystemExit("nobody subscribed to " + topic)
+        raise AssertionError("nobody subscribed to " + topic)
     return pub
 
 

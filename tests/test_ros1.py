@@ -496,3 +496,48 @@ done({"robot2_lefts": len(lefts["robot2"].messages()), "platform": platform,
     )
     assert result == {"robot2_lefts": 0, "platform": {"robot1": "turning", "robot2": "ready"}, "global": 0}
     assert all(n.poll() is None for n in nodes)
+
+
+def test_an_action_servers_first_answers_are_kept_even_before_the_goal_is_sent(tmp_path: Path) -> None:
+    """An action server may give feedback, and even the result, before actionlib's send_goal has
+    returned (the server is quick, the node's thread is not: seen under load). actionlib's
+    SimpleActionClient drops what comes in that window, which cost the supervisor an Arm's
+    progress; the adapter's Goal passes each answer on. A client whose server answers inside
+    send_goal makes the window certain here."""
+    import subprocess
+
+    from ros_support import ROS1_PYTHON, ros1_available, unavailable
+
+    if not ros1_available():
+        unavailable("ROS 1 (Debian's python3-rospy, python3-actionlib)")
+    script = """
+import sys
+sys.path.insert(0, RUNTIME)
+from actionlib import CommState
+from onboard.ros1 import SUCCEEDED, Goal
+
+class Handle:
+    state = CommState.ACTIVE
+    def get_comm_state(self): return self.state
+    def get_goal_status(self): return SUCCEEDED
+    def get_result(self): return 42
+
+class QuickServer:
+    def send_goal(self, goal, transition_cb, feedback_cb):
+        handle = Handle()
+        transition_cb(handle)  # active
+        feedback_cb(handle, goal * 10)
+        handle.state = CommState.DONE
+        transition_cb(handle)
+        transition_cb(handle)  # actionlib may call again in a terminal state: passed on once
+        return handle
+
+seen = []
+goal = Goal(QuickServer(), 3, on_feedback=lambda f: seen.append(("feedback", f)),
+            on_done=lambda status, result: seen.append(("done", status, result)))
+print(seen, goal.finished.is_set(), goal.status, goal.result)
+"""
+    runtime = f"RUNTIME = {str(ROOT / 'src' / 'robosc' / 'runtime')!r}\n"
+    done = subprocess.run([ROS1_PYTHON, "-c", runtime + script], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[('feedback', 30), ('done', 3, 42)] True 3 42"

@@ -30,3 +30,17 @@ def test_domain_ids_outside_what_ros2_takes_are_refused() -> None:
     assert "leave the ids 0 to 232" in done.stderr
     done = domains(ROBOSC_TEST_DOMAIN_BASE="ten")
     assert done.returncode != 0 and "a whole number is wanted" in done.stderr
+
+
+def test_the_tests_that_start_middleware_are_scheduled_in_one_worker() -> None:
+    """pytest-xdist hands the scheduler's units to its workers whole: every test of a file in
+    conftest.MIDDLEWARE is in the one unit, any other test is a unit of its own."""
+    import conftest
+
+    scheduler = object.__new__(conftest.MiddlewareInOneWorker)  # its _split_scope needs no state
+    units = {scheduler._split_scope(nodeid) for nodeid in (
+        "tests/test_ros2.py::test_a", "tests/test_sim_ros.py::test_b[2]", "tests/test_live_view.py::test_c",
+    )}
+    assert units == {"middleware"}
+    assert scheduler._split_scope("tests/test_fmt.py::test_d") == "tests/test_fmt.py::test_d"
+    assert all((HERE / f"{name}.py").is_file() for name in conftest.MIDDLEWARE)

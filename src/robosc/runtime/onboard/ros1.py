@@ -9,7 +9,7 @@ generated package's node script is only::
 rospy runs every callback on a thread of its own, so each one holds the
 supervisor's lock. Services are called on a thread (rospy calls are synchronous)
 and come back as response / error events; actions use actionlib's
-SimpleActionClient. Both wait for their server at most ``~server_timeout``
+ActionClient (:class:`Goal`). Both wait for their server at most ``~server_timeout``
 seconds, on their thread, so the node keeps running meanwhile. Parameters are
 private (``~rate``, ...) and checked: a bad value is refused with a log line.
 """
@@ -39,6 +39,48 @@ from .node import (
 )
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
+LOST = 9  # actionlib_msgs/GoalStatus.LOST
+
+
+class Goal(object):
+    """One goal sent with actionlib's ActionClient, its feedback and its end passed on.
+    actionlib's callbacks come with their goal handle, so none is lost when the server answers
+    before ``send_goal`` has returned (SimpleActionClient drops what comes in that window: the
+    goal's early feedback and its becoming active, seen under load)."""
+
+    def __init__(
+        self,
+        client: Any,
+        goal: Any,
+        on_feedback: Callable[[Any], None],
+        on_done: Optional[Callable[[int, Any], None]] = None,
+    ) -> None:
+        from actionlib import CommState
+
+        self.comm = CommState
+        self.on_feedback = on_feedback
+        self.on_done = on_done
+        self.finished = threading.Event()
+        self.status = LOST
+        self.result: Any = None
+        self.handle = client.send_goal(goal, transition_cb=self.transition, feedback_cb=self.feedback)
+
+    def feedback(self, handle: Any, feedback: Any) -> None:
+        if not self.finished.is_set():
+            self.on_feedback(feedback)
+
+    def transition(self, handle: Any, *_: Any) -> None:
+        state = handle.get_comm_state()
+        if self.finished.is_set() or state not in (self.comm.DONE, self.comm.LOST):
+            return
+        if state == self.comm.DONE:
+            self.status, self.result = handle.get_goal_status(), handle.get_result()
+        self.finished.set()
+        if self.on_done is not None:
+            self.on_done(self.status, self.result)
+
+    def cancel(self) -> None:
+        self.handle.cancel()
 
 
 def _log(level: str, message: str) -> None:
@@ -112,7 +154,7 @@ class SupervisorNode(NodeCore):
         for call in self.service_calls:
             call.client = rospy.ServiceProxy(call.name, call.type)
         for call in self.action_calls:
-            call.client = actionlib.SimpleActionClient(call.name, call.type)
+            call.client = actionlib.ActionClient(call.name, call.type)
         self.trigger = load("std_srvs", "srv", "Trigger")
         self.asking: set[str] = set()  # components whose driver is being asked now
         for component in self.supervisor.COMPONENTS:
@@ -237,10 +279,11 @@ class SupervisorNode(NodeCore):
         with self.lock:
             if number != call.goal:
                 return  # cancelled while waiting for the server
-            call.client.send_goal(
+            call.handle = Goal(
+                call.client,
                 goal,
-                done_cb=lambda status, result: self.locked(self.done, call, number, status, result)(),
-                feedback_cb=lambda feedback: self.locked(self.feedback, call, number, feedback)(),
+                on_feedback=lambda feedback: self.locked(self.feedback, call, number, feedback)(),
+                on_done=lambda status, result: self.locked(self.done, call, number, status, result)(),
             )
 
     def feedback(self, call: Call, number: int, feedback: Any) -> None:
@@ -255,7 +298,8 @@ class SupervisorNode(NodeCore):
     def cancel_goal(self, call: Call) -> bool:
         call.goal += 1  # results of the cancelled goal are ignored
         try:
-            call.client.cancel_goal()
+            if call.handle is not None:
+                call.handle.cancel()
         except Exception as error:
             self.warnings("action %s: cancel failed: %s" % (call.name, error), "cancel " + call.name)
         return True
@@ -301,12 +345,12 @@ class SupervisorNode(NodeCore):
                         self.answer(call.error, None)
                 server.set_aborted(text="no action server")
                 return
-            client.send_goal(goal, feedback_cb=lambda feedback: self.pass_feedback(call, number, feedback))
-            while not client.wait_for_result(rospy.Duration(0.02)):
+            sent = Goal(client, goal, on_feedback=lambda feedback: self.pass_feedback(call, number, feedback))
+            while not sent.finished.wait(0.02):
                 if rospy.is_shutdown():
                     return
                 if number != call.goal:  # the supervisor cancelled it
-                    client.cancel_goal()
+                    sent.cancel()
                     server.set_preempted(text="cancelled by the supervisor")
                     return
                 if server.is_preempt_requested():
@@ -322,15 +366,15 @@ class SupervisorNode(NodeCore):
                                 "the supervisor does not allow it now",
                             )
                     if cancelled:
-                        client.cancel_goal()
+                        sent.cancel()
                         server.set_preempted()
                         return
             with self.lock:
                 if number != call.goal:
                     server.set_preempted(text="cancelled by the supervisor")
                     return
-                succeeded = client.get_state() == SUCCEEDED
-                result = client.get_result()
+                succeeded = sent.status == SUCCEEDED
+                result = sent.result
                 self.answer(call.response if succeeded else call.error, result if succeeded else None)
             if succeeded:
                 server.set_succeeded(result)
