@@ -33,9 +33,8 @@ def pytest_configure(config: pytest.Config) -> None:
 # own xdist_group mark is lost on pytest 9, which no longer reads the node id xdist rewrites).
 MIDDLEWARE = {
     "test_belief", "test_boundary_ros", "test_build", "test_codegen_ros", "test_docs", "test_faults_ros",
-    "test_fleet_ros", "test_fleet_world", "test_fleet_world_ros", "test_live_server", "test_live_view",
-    "test_readme", "test_ros1", "test_ros2", "test_ros_support", "test_runtime", "test_sim", "test_sim_ros",
-    "test_sim_view", "test_vscode_extension", "test_fleet_view",
+    "test_fleet_ros", "test_fleet_world_ros", "test_live_server", "test_live_view", "test_ros1", "test_ros2",
+    "test_ros_support", "test_sim_ros", "test_sim_view", "test_fleet_view",
 }
 _oracle_lines: list[str] = []  # the oracle's summary, as the xdist workers hand it over
 

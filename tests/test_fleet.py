@@ -572,9 +572,13 @@ def test_a_quantifier_that_does_not_read_the_for_variable_is_resolved_once_for_t
     assert model is not None  # no limit met
     docks = [r.condition for r in model.requirements if r.communications[0].name.endswith(".dock")]
     assert len(docks) == 500 and all(d.operand is docks[0].operand for d in docks)  # type: ignore[attr-defined]
-    # one that reads r is r's own: `r.depot => ... any(...)`: the any is shared, the whole is not
+    # one that reads r is r's own: `(r.depot or r.ready) => ... any(...)`: the any is shared, the
+    # whole is not
     gos = [r.condition for r in model.requirements if r.communications[0].name.endswith(".go")]
-    depot = [g for g in gos if isinstance(g.left, m.StateRef) and g.left.state.name == "depot"]  # type: ignore[attr-defined]
+    depot = [
+        g for g in gos
+        if isinstance(g.left, m.Binary) and isinstance(g.left.left, m.StateRef) and g.left.left.state.name == "depot"  # type: ignore[attr-defined]
+    ]
     first, second = depot[0], depot[1]
     assert first is not second and first.right.right.operand is second.right.right.operand  # type: ignore[attr-defined]
 
@@ -752,3 +756,25 @@ def test_the_coordinator_readme_says_what_each_driver_provides(ros: int, tmp_pat
     for name in ("open_door", "close_door", "door_opened", "door_closed", *(f"bot{i}/{c}" for i in (1, 2, 3)
                  for c in ("go", "dock", "arrived", "stopped", "charged"))):
         assert f"| `{name}` |" in text, name
+
+
+@pytest.mark.parametrize("robots", [3, 4])
+def test_a_condition_on_robots_in_either_of_some_places_is_written_as_one_count(robots: int) -> None:
+    """The warehouse: a robot at the depot, charged or not, enters the aisle only while every
+    other robot is at the depot, charging or charged. Taken apart counter by counter that was a
+    case for each way of splitting the robots among the three places (`count(q in bot: q.depot)
+    < 2 and ((count(q in bot: q.charging) = 0 and count(q in bot: q.ready) >= 2) or ...`); it
+    is one count of either place, and the generated module that reads it decides as the
+    monolithic supervisor."""
+    from module_check import module_agrees
+
+    text = (Path(__file__).resolve().parent.parent / "examples/warehouse.rscd").read_text()
+    network = build_network(check_text(text.replace("component bot[3]", f"component bot[{robots}]")).model)
+    counted = synthesize_counted(network)
+    go = next(g for g in counted.guards if g.event.name == "bot1.go")
+    assert go.added is not None
+    assert render(go.added) == (
+        f"(bot1.depot or bot1.ready) => (count(q in bot: q.depot or q.charging or q.ready) >= {robots})"
+    )
+    if robots == 3:  # the monolithic supervisor of four robots and the person takes a minute
+        assert module_agrees(counted, synthesize_monolithic(network), runs=4, steps=60) == 240

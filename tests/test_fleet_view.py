@@ -137,7 +137,10 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
             "return [d.hidden, Array.from(d.querySelectorAll('.chip.current')).map(c => c.textContent),"
             " document.getElementById('loc:bot2').textContent, d.querySelectorAll('.chip').length];"
         )
-        assert chips[0] is False and chips[1] == [chips[2]] and chips[3] == 25, chips
+        from robosc.api import load_model
+
+        bot2 = next(c for c in load_model(ROOT / "examples/warehouse.rscd").components if c.name == "bot2")
+        assert chips[0] is False and chips[1] == [chips[2]] and chips[3] == len(bot2.behaviours[0].states), chips
 
         # the event list by robot
         assert wait_until(lambda: len(page(browser)["feed"]) >= 20, 30)

@@ -96,7 +96,9 @@ def test_each_driver_of_the_world_knows_where_its_component_is_from_what_went_by
     assert (where.where("bot2"), where.where("bot3"), where.where("Door")) == ("charging", "depot", "opening")
     where.went("bot2.charged")
     where.went("door_opened")
-    assert (where.where("bot2"), where.where("Door")) == ("depot", "open")
+    assert (where.where("bot2"), where.where("Door")) == ("ready", "open")  # charged: a task is next
+    where.went("bot2.go")
+    assert where.where("bot2") == "to_out1"
 
 
 def test_the_simulators_node_is_copied_once_per_run_over_an_earlier_runs(tmp_path: Path) -> None:

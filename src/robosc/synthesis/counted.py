@@ -9,7 +9,8 @@ import time
 from typing import Any
 
 from robosc.language import model as m
-from robosc.plant.expressions import NO_SPAN, all_of
+from robosc.language.render import render
+from robosc.plant.expressions import NO_SPAN, all_of, any_of
 from robosc.plant.network import Network
 from robosc.synthesis.explain import explain
 from robosc.synthesis.fleet_why import describer
@@ -76,19 +77,24 @@ def synthesize_counted(
         pairs = [
             (ce, fleet.moves[ce][1][0].source if owner is not None else None) for ce in supervisor.counted_of(event)
         ]
-        parts = []
+        # the condition from each place the robot does the event in; places with the same
+        # condition are written once: (bot1.depot or bot1.ready) => ...
+        written: dict[str, tuple[m.Expr, list[m.Expr]]] = {}  # a condition's text -> it, its places
         for counted_event, source in pairs:
             care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
             beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
             if (care & ~beyond) == enc.false:
                 continue
             added = lift(readable(enc, beyond, care), fleet, network)
+            places = written.setdefault(render(added), (added, []))[1]
             if source is not None and owner is not None:
                 group, agent = owner
                 back = {v: k for k, v in group.to_rep[id(agent)].items()}
-                here = rename_back(translator.at(group, source), back)
-                added = m.Binary("=>", here, added, m.BOOLEAN, NO_SPAN)
-            parts.append(added)
+                places.append(rename_back(translator.at(group, source), back))
+        parts = [
+            m.Binary("=>", any_of(places), added, m.BOOLEAN, NO_SPAN) if places else added
+            for added, places in written.values()
+        ]
         guards.append(EventGuard(event, required, all_of(parts) if parts else None))
     return SynthesisResult(
         network,

@@ -3,7 +3,9 @@
 Decomposes on one automaton or variable at a time (model order, components
 first), groups the values that lead to the same remainder, and writes each group
 as briefly as it can: ``Platform.ready``, ``Distance.front = no_wall_front``,
-``Arm.picks < 3``.
+``Arm.picks < 3``. On a counted fleet, a condition on some counters of one group that is a
+condition on their sum is written so (``c_depot + c_ready >= 2``: robots in either place), where
+taken apart counter by counter it would be a case for each way of splitting the robots.
 """
 
 from __future__ import annotations
@@ -83,16 +85,71 @@ def readable(enc: Encoding, u: BDD, care: BDD | None = None) -> m.Expr:
     """An expression that holds where ``u`` holds, on the states of ``care`` (default:
     every valid state); outside ``care`` it may say anything."""
     region = enc.valid() if care is None else care & enc.valid()
-    return _expr(enc, u, region, _order(enc))
+    return _expr(enc, u, region, _order(enc), {})
 
 
-def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
+SUMMED_AT_MOST = 4  # counters of a group a condition is tried as a sum of
+
+
+def _summed(enc: Encoding, u: BDD, care: BDD, support: set[str], sums: dict[Any, Any]) -> m.Expr | None:
+    """``u`` on ``care`` as a condition on the sum of the counters of one group it reads (two
+    to SUMMED_AT_MOST of them, nothing else): the sum at least, at most, between or equal to
+    constants; None where it is not one. ``sums`` keeps each sum's values, made once."""
+    for counters, _total in enc.network.totals:
+        used = [enc.field(c) for c in counters if support & set(enc.field(c).bits)]
+        if not 2 <= len(used) <= SUMMED_AT_MOST or not support <= {b for f in used for b in f.bits}:
+            continue
+        key = tuple(f.name for f in used)
+        if key not in sums:
+            total: m.Expr = _ref(used[0])
+            for f in used[1:]:
+                total = m.Binary("+", total, _ref(f), m.INTEGER, NO_SPAN)
+            sums[key] = (total, enc.values(total))
+        total, values = sums[key]
+        chosen, free = [], []
+        for value, where in values.items():
+            here = where & care
+            if here == enc.false:
+                free.append(value)
+            elif (here & ~u) == enc.false:
+                chosen.append(value)
+            elif (here & u) != enc.false:
+                return None  # the sum alone does not tell
+        return _range(total, chosen, free, sorted(values))
+    return None
+
+
+def _range(total: m.Expr, chosen: list[int], free: list[int], values: list[int]) -> m.Expr | None:
+    """``total`` is one of ``chosen`` (``free`` may go either way) as one comparison or two;
+    None where the chosen values are not one range."""
+    low, high = min(chosen), max(chosen)
+    inside = set(chosen) | set(free)
+    if not all(v in inside for v in range(low, high + 1)):
+        return None
+
+    def compare(op: str, value: int) -> m.Expr:
+        return m.Binary(op, total, m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+
+    if low == high and low - 1 not in free and low + 1 not in free:
+        return compare("=", low)
+    bounds = []
+    if not all(v in inside for v in values if v < low):
+        bounds.append(compare(">=", low))
+    if not all(v in inside for v in values if v > high):
+        bounds.append(compare("<=", high))
+    return all_of(bounds)
+
+
+def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, Any]) -> m.Expr:
     if (u & care) == enc.false:
         return FALSE
     if (care & ~u) == enc.false:
         return TRUE
     u = cudd.restrict(u, care)
     support = enc.bdd.support(u)
+    summed = _summed(enc, u, care, support, sums) if enc.network.totals else None
+    if summed is not None:
+        return summed
     position = next(i for i, f in enumerate(order) if support & set(f.bits))
     field, rest = order[position], order[position + 1 :]
     groups: dict[int, list[Any]] = {}
@@ -115,7 +172,7 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field]) -> m.Expr:
         remainder, care_here = remainders[key]
         if (remainder & care_here) == enc.false:
             continue
-        sub = _expr(enc, remainder, care_here, rest)
+        sub = _expr(enc, remainder, care_here, rest, sums)
         # two groups whose remainders read the same where each applies are one group:
         # "(Lift.ground or Lift.top) and X or (Lift.rising or Lift.sinking) and X" is "X"
         text = render(sub)

@@ -974,13 +974,26 @@ def lift(e: m.Expr, fleet: Counted, network: Network) -> m.Expr:
         back = {v: k for k, v in group.to_rep[id(agent)].items()}
         return rename_back(translator.at(group, index), back)
 
-    def counted(node: m.Expr) -> m.Expr | None:
+    def places(node: m.Expr) -> list[m.VariableRef] | None:
+        """The counters a sum of counters adds up (``c_depot + c_ready``), or None."""
         if isinstance(node, m.VariableRef) and node.variable in counters:
-            group, index = counters[node.variable]
-            terms = tuple(agent_at(group, agent, index) for agent in group.agents)
-            name = group.name if whole[group.name] else ""
-            return m.Count(name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
+            return [node]
+        if isinstance(node, m.Binary) and node.op == "+":
+            left, right = places(node.left), places(node.right)
+            if left is not None and right is not None:
+                return left + right
         return None
+
+    def counted(node: m.Expr) -> m.Expr | None:
+        added = places(node)
+        if added is None or len({id(counters[r.variable][0]) for r in added}) != 1:
+            return None
+        # robots in one place or another of the group: one count of either, robot by robot
+        group = counters[added[0].variable][0]
+        indices = [counters[r.variable][1] for r in added]
+        terms = tuple(any_of([agent_at(group, agent, i) for i in indices]) for agent in group.agents)
+        name = group.name if whole[group.name] else ""
+        return m.Count(name, terms, m.BasicType(m.BasicKind.INTEGER, 0, len(terms)), NO_SPAN)
 
     return replace(e, counted)
 
