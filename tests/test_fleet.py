@@ -3,6 +3,7 @@ identical robots, checked against the monolithic and the explicit methods."""
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -778,3 +779,21 @@ def test_a_condition_on_robots_in_either_of_some_places_is_written_as_one_count(
     )
     if robots == 3:  # the monolithic supervisor of four robots and the person takes a minute
         assert module_agrees(counted, synthesize_monolithic(network), runs=4, steps=60) == 240
+
+
+@pytest.mark.parametrize("fleet", ["counted", "monolithic"])
+def test_an_explanation_ends_where_the_deadlock_is_without_events_that_do_not_matter(fleet: str) -> None:
+    """Why the warehouse's bot1.go is restricted: after it, bot1 arrives in the aisle's first
+    cell, face to face with bot2, and nobody can move. Before, the run went on with the person's
+    detector reporting the depot (person_cell, which can happen at any time: the search looked
+    for a state with no uncontrollable way on) and the deadlock was told with the person there."""
+    text = (Path(__file__).resolve().parent.parent / "examples/warehouse.rscd").read_text()
+    result = synthesize_model(check_text(text).model, options=SynthesisOptions(fleet=fleet))
+    why = restriction(result, "bot1.go")
+    assert why is not None
+    # bot1 arrives in out1, or (the monolithic method may follow it) stops on its way there
+    (step,) = why.consequence.path
+    assert step.event.name in ("bot1.arrived", "bot1.stopped") and step.state.endswith("Person.cell = away")
+    cell = "out1" if step.event.name == "bot1.arrived" else "stopped_out1"
+    stuck = rf"Person.cell = away\] \(stuck outside a marked state: bot1.{cell}, bot[23].out2\)"
+    assert re.search(stuck, why.consequence.reason), why.consequence.reason

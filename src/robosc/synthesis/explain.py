@@ -98,24 +98,68 @@ def explain_path(
     """:func:`explain_from`'s parts: the state of ``start`` explained, the uncontrollable
     events from it (each with the state it reaches), the reason and the fixes."""
     enc = fp.enc
-    network = enc.network
-    uncontrollable = network.uncontrollable
-    blocked_at = enc.false
-    for event in uncontrollable:
-        blocked_at |= enc.pre(fp.relation[event], fp.bad)
-    sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
-    layers = layers_from(enc, start, (fp.relation[e] for e in uncontrollable), within=fp.bad, until=sources)
-    target = layers[-1] & sources
+    uncontrollable = list(enc.network.uncontrollable)
+    # first without the events of components that are always at rest (a detector's readings,
+    # which can come at any time): the trouble is then told where it is, not after them
+    quiet = [e for e in uncontrollable if not _resting(enc.network, e)]
+    for events in ([quiet, uncontrollable] if len(quiet) < len(uncontrollable) else [uncontrollable]):
+        blocked_at = enc.false  # bad states an event leads on from, to another bad state
+        for event in events:
+            blocked_at |= enc.pre(_moving(enc, fp.relation[event]), fp.bad)
+        sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
+        if events is not uncontrollable:  # ... and is there, whatever the resting components do
+            sources = fp.requirement_bad | (sources & ~_reaching_marked(fp))
+        layers = layers_from(enc, start, (fp.relation[e] for e in events), within=fp.bad, until=sources)
+        target = layers[-1] & sources
+        if target != enc.false:
+            break
     if target == enc.false:  # cannot happen when the initial state is bad; be safe anyway
         target = layers[-1]
     last = pick(fp, target)
-    path = walk_back(fp, layers, last, [(e, fp.relation[e]) for e in uncontrollable])
+    path = walk_back(fp, layers, last, [(e, fp.relation[e]) for e in events])
     reason = _reason(fp, last, failed)
     found = fixes(fp, last) if reason.startswith("the system would block") else []
     trapped = fp.memo.get(("trapped", last))
     if trapped is not None:
         found += fixes(fp, trapped)
     return pick(fp, start), path, reason, likeliest(found)
+
+
+def _resting(network: Network, event: Event) -> bool:
+    """Whether ``event`` belongs only to automata whose every location is marked (a detector, a
+    sensor: always at rest) and moves no robot of a counted fleet."""
+    counters = {c for counted, _ in network.totals for c in counted}
+    owners = [a for a in network.automata if event in a.alphabet]
+    moved = {u.variable for a in owners for edge in a.edges if edge.event is event for u in edge.updates}
+    return bool(owners) and not moved & counters and all(loc.marked for a in owners for loc in a.locations)
+
+
+def _moving(enc: Any, relation: Relation) -> Relation:
+    """``relation`` without its transitions that change nothing (an answer no component waits
+    for, taken on the self-loop the plant has for it)."""
+    same = enc.true
+    for bit, primed in zip(relation.bits, relation.primed, strict=True):
+        same &= enc.bdd.apply("<=>", enc.bdd.var(bit), enc.bdd.var(primed))
+    return Relation(relation.bdd & ~same, relation.bits, relation.primed, relation.guard)
+
+
+def _reaching_marked(fp: Any) -> BDD:
+    """The states from which a run the requirements allow leads to a marked state (whatever the
+    supervisor does), worked out once per synthesis."""
+    enc = fp.enc
+    if "reaching marked" not in fp.memo:
+        steps = [fp.relation[e].restrict(fp.required[e]) for e in enc.network.events]
+        reach = fp.marked & enc.valid()
+        while True:
+            more = reach
+            for relation in steps:
+                more |= enc.pre(relation, reach) & enc.valid()
+            if more == reach:
+                break
+            reach = more
+        fp.memo["reaching marked"] = reach
+    reaching: BDD = fp.memo["reaching marked"]
+    return reaching
 
 
 def likeliest(found: list[Fix]) -> tuple[Fix, ...]:
