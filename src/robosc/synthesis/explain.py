@@ -102,13 +102,14 @@ def explain_path(
     # first without the events of components that are always at rest (a detector's readings,
     # which can come at any time): the trouble is then told where it is, not after them
     quiet = [e for e in uncontrollable if not _resting(enc.network, e)]
+    leading_on = {e: enc.pre(_moving(enc, fp.relation[e]), fp.bad) for e in uncontrollable}
     for events in ([quiet, uncontrollable] if len(quiet) < len(uncontrollable) else [uncontrollable]):
         blocked_at = enc.false  # bad states an event leads on from, to another bad state
         for event in events:
-            blocked_at |= enc.pre(_moving(enc, fp.relation[event]), fp.bad)
+            blocked_at |= leading_on[event]
         sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
         if events is not uncontrollable:  # ... and is there, whatever the resting components do
-            sources = fp.requirement_bad | (sources & ~_reaching_marked(fp))
+            sources = fp.requirement_bad | (sources & _required_moves(fp)[1])
         layers = layers_from(enc, start, (fp.relation[e] for e in events), within=fp.bad, until=sources)
         target = layers[-1] & sources
         if target != enc.false:
@@ -141,25 +142,6 @@ def _moving(enc: Any, relation: Relation) -> Relation:
     for bit, primed in zip(relation.bits, relation.primed, strict=True):
         same &= enc.bdd.apply("<=>", enc.bdd.var(bit), enc.bdd.var(primed))
     return Relation(relation.bdd & ~same, relation.bits, relation.primed, relation.guard)
-
-
-def _reaching_marked(fp: Any) -> BDD:
-    """The states from which a run the requirements allow leads to a marked state (whatever the
-    supervisor does), worked out once per synthesis."""
-    enc = fp.enc
-    if "reaching marked" not in fp.memo:
-        steps = [fp.relation[e].restrict(fp.required[e]) for e in enc.network.events]
-        reach = fp.marked & enc.valid()
-        while True:
-            more = reach
-            for relation in steps:
-                more |= enc.pre(relation, reach) & enc.valid()
-            if more == reach:
-                break
-            reach = more
-        fp.memo["reaching marked"] = reach
-    reaching: BDD = fp.memo["reaching marked"]
-    return reaching
 
 
 def likeliest(found: list[Fix]) -> tuple[Fix, ...]:

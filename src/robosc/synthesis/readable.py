@@ -47,8 +47,27 @@ def _equals(field: Field, value: Any, op: str = "=") -> m.Expr:
     return m.Binary(op, ref, constant, m.BOOLEAN, NO_SPAN)
 
 
-def _compare(field: Field, op: str, value: int) -> m.Expr:
-    return m.Binary(op, _ref(field), m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+def _int_range(ref: m.Expr, chosen: list[Any], free: list[Any], lowest: int, highest: int) -> m.Expr | None:
+    """``ref`` (an integer from ``lowest`` to ``highest``) is one of ``chosen`` (values in ``free``
+    may go either way) as one comparison or two; None where the chosen values are not one range."""
+    values = sorted([*chosen, *free])
+    low, high = min(chosen), max(chosen)
+    if not all(v in values for v in range(low, high + 1)):  # not a contiguous range (with free values)
+        return None
+
+    def compare(op: str, value: int) -> m.Expr:
+        return m.Binary(op, ref, m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+
+    if low == high and not any(v in free for v in (low - 1, low + 1)):
+        return compare("=", low)
+    reaches_low = all(v in values for v in range(lowest, low))
+    reaches_high = all(v in values for v in range(high + 1, highest + 1))
+    bounds = []
+    if not reaches_low:
+        bounds.append(compare(">=", low))
+    if not reaches_high:
+        bounds.append(compare("<=", high) if not reaches_low else compare("<", high + 1))
+    return all_of(bounds)
 
 
 def membership(field: Field, chosen: list[Any], free: list[Any]) -> m.Expr | None:
@@ -62,20 +81,9 @@ def membership(field: Field, chosen: list[Any], free: list[Any]) -> m.Expr | Non
             return all_of([negate(m.StateRef(o, NO_SPAN)) for o in others])
         return any_of([m.StateRef(c, NO_SPAN) for c in chosen])
     if all(isinstance(v, int) and not isinstance(v, bool) for v in field.values):
-        values = sorted([*chosen, *free])
-        low, high = min(chosen), max(chosen)
-        if all(v in values for v in range(low, high + 1)):  # a contiguous range (with free values)
-            lowest, highest = min(field.values), max(field.values)
-            if low == high and not any(v in free for v in (low - 1, low + 1)):
-                return _equals(field, low)
-            reaches_low = all(v in values for v in range(lowest, low))
-            reaches_high = all(v in values for v in range(high + 1, highest + 1))
-            bounds = []
-            if not reaches_low:
-                bounds.append(_compare(field, ">=", low))
-            if not reaches_high:
-                bounds.append(_compare(field, "<=", high) if not reaches_low else _compare(field, "<", high + 1))
-            return all_of(bounds)
+        found = _int_range(_ref(field), chosen, free, min(field.values), max(field.values))
+        if found is not None:
+            return found
     if len(others) < len(chosen):
         return all_of([_equals(field, v, "!=") for v in others])
     return any_of([_equals(field, v) for v in chosen])
@@ -115,29 +123,8 @@ def _summed(enc: Encoding, u: BDD, care: BDD, support: set[str], sums: dict[Any,
                 chosen.append(value)
             elif (here & u) != enc.false:
                 return None  # the sum alone does not tell
-        return _range(total, chosen, free, sorted(values))
+        return _int_range(total, chosen, free, min(values), max(values))
     return None
-
-
-def _range(total: m.Expr, chosen: list[int], free: list[int], values: list[int]) -> m.Expr | None:
-    """``total`` is one of ``chosen`` (``free`` may go either way) as one comparison or two;
-    None where the chosen values are not one range."""
-    low, high = min(chosen), max(chosen)
-    inside = set(chosen) | set(free)
-    if not all(v in inside for v in range(low, high + 1)):
-        return None
-
-    def compare(op: str, value: int) -> m.Expr:
-        return m.Binary(op, total, m.Literal(value, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
-
-    if low == high and low - 1 not in free and low + 1 not in free:
-        return compare("=", low)
-    bounds = []
-    if not all(v in inside for v in values if v < low):
-        bounds.append(compare(">=", low))
-    if not all(v in inside for v in values if v > high):
-        bounds.append(compare("<=", high))
-    return all_of(bounds)
 
 
 def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, Any]) -> m.Expr:
