@@ -327,6 +327,23 @@ def test_a_late_duplicate_stamped_before_the_command_it_would_answer_is_ignored(
     assert robot.snapshot()["automata"]["Door"] == "open"
 
 
+def test_a_command_the_cycle_chooses_is_noted_for_late_answers_and_a_still_one_is_not() -> None:
+    """The cycle performs a command that changes nothing (the maze solver's movement) without
+    noting what it changed; one that moves a component (turn_left) is noted, so that an answer
+    stamped before it (a late duplicate) is ignored."""
+    node = FakeNode("examples/maze_solver.rscd", "controller", wait_for_data=False)
+    robot, scan = node.supervisor, node.inputs["/scan"]
+    node.receive(scan, Data({"ranges": [5.0] * 360}))
+    assert robot.tick() == "movement" and robot.commanded == {}
+    node.receive(scan, Data({"ranges": [0.5] + [5.0] * 359}))  # a wall ahead: only turn_left
+    before = time.time()
+    assert robot.tick() == "turn_left" and set(robot.commanded) == {"a8_Platform"}
+    node.receive(node.inputs["/rotate_done"], None, stamp=before - 1.0)
+    assert robot.snapshot()["automata"]["Platform"] == "turning" and robot.ignored == {"rotate_done": 1}
+    node.receive(node.inputs["/rotate_done"], None, stamp=time.time())
+    assert robot.snapshot()["automata"]["Platform"] == "ready"
+
+
 def test_a_message_stamped_no_later_than_the_last_one_is_a_duplicate() -> None:
     node = Node("examples/line_follower.rscd", rate=20.0, seed=1, trust_initial_state=True)
     feed(node)

@@ -37,6 +37,7 @@ RUNTIME = {
     "live_server.py",
     "messages.py",
     "node.py",
+    "profiles.py",
     "recording.py",
     "ros1.py",
     "ros2.py",

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import ast
 import json
+import re
 import subprocess
 import sys
 import time
@@ -561,6 +562,12 @@ def test_two_robots_in_namespaces_on_one_graph(ros2: Ros2, tmp_path: Path) -> No
     assert _state(states["robot2"])["Platform"] == "ready"
     assert ros2.node.count_publishers("/cmd_vel") == 0  # nothing left in the global namespace
     assert all(n.poll() is None for n in nodes)
+    # each wrote its Fast DDS profile (its /cmd_vel with Fast DDS's own heartbeat, by its resolved
+    # name), Fast DDS read it without an error, and it is gone
+    left = [f for f in Path("/dev/shm").glob("robosc-fastdds-*.xml") if "/robot1/cmd_vel" in f.read_text()]
+    assert left == [], "a node left its profile behind"
+    logs = "".join(log.read_text(errors="replace") for _, log in ros2.processes.running)
+    assert not re.search(r"XML\w* Error", logs), "Fast DDS could not read the profile"
 
 
 def test_bad_parameters_are_refused_without_a_traceback(ros2: Ros2, tmp_path: Path) -> None:

@@ -278,6 +278,8 @@ class NodeCore(object):
         self.refused: Optional[str] = None  # why send() refused the command being forwarded, if it did
         self.text_publishers: Dict[str, Any] = {}  # made by the adapter
         self.text_type: Any = None
+        self.still = frozenset(robot_class.STILL)
+        self.ticks_on_message = bool(self.params["tick_on_message"])
         self._plan_routes(robot_class)
 
     # ---- after each callback and cycle -------------------------------------------------------
@@ -563,7 +565,7 @@ class NodeCore(object):
     def after_message(self) -> None:
         if self.mode == "supervisor":
             self.supervisor.settle()
-        elif self.params["tick_on_message"]:
+        elif self.ticks_on_message:
             self.supervisor.tick()
 
     def publish_state(self) -> None:
@@ -578,10 +580,15 @@ class NodeCore(object):
         than the last one taken from the topic is a duplicate (DDS history given again), ignored."""
         try:
             if stamp is None or self.fresh(topic, stamp):
-                deliver = self.supervisor.deliver
+                supervisor = self.supervisor
+                deliver = supervisor.deliver
                 for name, communication in topic.takes:
-                    deliver(name, received(communication, message), True, stamp)
-                self.after_message()
+                    value = message if communication.data == "object" else received(communication, message)
+                    deliver(name, value, True, stamp)
+                if self.mode == "supervisor":
+                    supervisor.settle()
+                elif self.ticks_on_message:
+                    supervisor.tick()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
         self.checkpoint()
@@ -650,7 +657,8 @@ class NodeCore(object):
                         self.warnings("not sent: %s: %s" % (name, error), "unsendable " + name)
                         return False
                     topic.made = (data, message)
-            delivery.sent(name, topic)
+            if name not in self.still:  # what changes nothing leaves nothing to confirm
+                delivery.sent(name, topic)
             self.publish(topic, message)
             return True
         call = place

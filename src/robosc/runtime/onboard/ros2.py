@@ -38,6 +38,7 @@ from rclpy.qos import DurabilityPolicy, QoSPolicyKind, QoSProfile, ReliabilityPo
 from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
+from . import profiles
 from .messages import SENSOR_PACKAGE, MissingType, load
 from .node import (
     BLOCKED_TOPIC,
@@ -56,7 +57,6 @@ from .node import (
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
 POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
-PROFILE = "fastdds.xml"  # next to this module: the writers' heartbeat, for prompt acknowledgements
 
 
 class SupervisorNode(Node, NodeCore):
@@ -459,15 +459,27 @@ def main(
     robot_class: Any, mode: str = "controller", args: Optional[List[str]] = None, node_name: Optional[str] = None
 ) -> int:
     """Run the node until shut down; returns the exit status."""
-    # acknowledgements within milliseconds (see fastdds.xml), unless the user has a profile of their own
-    os.environ.setdefault("FASTRTPS_DEFAULT_PROFILES_FILE", os.path.join(os.path.dirname(__file__), PROFILE))
-    rclpy.init(args=args if args is not None else sys.argv)
+    arguments = args if args is not None else sys.argv
+    # acknowledgements within milliseconds (see profiles.py), unless the user has a profile of their own
+    written = None
+    if not (os.environ.get("FASTRTPS_DEFAULT_PROFILES_FILE") or os.environ.get("FASTDDS_DEFAULT_PROFILES_FILE")):
+        try:
+            written = profiles.write(robot_class, arguments)
+            os.environ["FASTRTPS_DEFAULT_PROFILES_FILE"] = written
+        except OSError as error:  # no temporary file: the profile as it comes, for every writer
+            print("[robosc] %s: every command topic gets the 10 ms heartbeat" % (error,), file=sys.stderr)
+            os.environ["FASTRTPS_DEFAULT_PROFILES_FILE"] = os.path.join(os.path.dirname(__file__), profiles.DEFAULT)
+    rclpy.init(args=arguments)
     try:
         node = SupervisorNode(robot_class, mode, node_name)
     except MissingType as error:
         print("[robosc] %s" % (error,), file=sys.stderr)
         try_shutdown()
         return 1
+    finally:  # Fast DDS has read it when the node's participant was made
+        if written is not None:
+            with contextlib.suppress(OSError):
+                os.remove(written)
     node.log("info", "robosc supervisor of %s running (%s, %s Hz)" % (robot_class.ROBOT, mode, node.params["rate"]))
     # a supervision layer forwarding calls or goals waits for the robot on threads of its own
     waits = mode == "supervisor" and bool(node.service_calls or node.action_calls)

@@ -315,6 +315,7 @@ class Supervisor(object):
     # only events some component answers in some locations but not in all
     ANSWERS: ClassVar[Dict[str, Tuple[Tuple[str, Tuple[str, ...]], ...]]] = {}
     ALWAYS: ClassVar[Tuple[str, ...]] = ()  # uncontrollable events the plant takes in every state
+    STILL: ClassVar[Tuple[str, ...]] = ()  # controllable events whose effect changes no field
     # indexes of the tables above, made by prepare()
     EVENT: ClassVar[Dict[str, Event]]
     CONTROLLABLE: ClassVar[Tuple[str, ...]]
@@ -334,6 +335,7 @@ class Supervisor(object):
     ANSWERED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the fields ANSWERS names
     GETTER: ClassVar[Callable[[Any], Any]]  # every field's value at once (C speed)
     FREE: ClassVar[FrozenSet[str]]  # ALWAYS but those ANSWERS names: always taken, without a look
+    STILL_METHODS: ClassVar[FrozenSet[str]]  # the methods of STILL: performed without noting what changed
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super(Supervisor, cls).__init_subclass__(**kwargs)
@@ -358,6 +360,7 @@ class Supervisor(object):
         answered = set(field for answers in cls.ANSWERS.values() for field, _ in answers)
         cls.ANSWERED = tuple((cls.INDEX[f], f) for f in cls.ATTRIBUTES if f in answered)
         cls.FREE = frozenset(cls.ALWAYS).difference(cls.ANSWERS)
+        cls.STILL_METHODS = frozenset(e.method for e in cls.EVENTS if e.name in cls.STILL)
         cls.COMPONENT_OF = {}
         cls.COMPONENTS = {}
         cls.CANDIDATES = {}
@@ -671,7 +674,7 @@ class Supervisor(object):
         if n == 0:
             return None
         perform = enabled[0] if n == 1 else enabled[int(self._random() * n)]
-        if self.watching:
+        if self.watching and perform.__name__ not in self.STILL_METHODS:
             return self._watched(perform, None)
         return perform()
 
