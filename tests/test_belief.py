@@ -565,3 +565,78 @@ def test_a_message_sent_before_the_driver_was_asked_is_in_its_report() -> None:
     node.receive(node.inputs["/emergency_stop/stop"], None, pressed)
     assert node.supervisor.snapshot()["automata"]["EmergencyStop"] == "in_service"
     assert node.supervisor.ignored == {"stop": 1}
+
+
+# ---- one message, several events ---------------------------------------------------------------
+MAZE = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "examples/maze_solver.rscd")))).Robot
+SCAN_EVENTS = ("scan_front", "scan_right", "scan_diag_right")
+RANGES = st.one_of(
+    st.lists(st.sampled_from([0.3, 0.5, 0.65, 0.8, 5.0, float("nan"), float("inf")]), min_size=360, max_size=360),
+    st.lists(st.just(5.0), max_size=280),  # too short for some of the rules
+)
+
+
+def _mind(robot: Any) -> tuple[Any, ...]:
+    """What a delivery may change: the state and everything counted about the data."""
+    return (
+        type(robot).GETTER(robot),
+        dict(robot.unreadable),
+        dict(robot.ignored),
+        sorted(robot._unreadable_since),
+        sorted(robot.waiting),
+        sorted(robot.stale),
+        dict(robot.heard),
+        robot.health_changes,
+    )
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    scans=st.lists(st.tuples(RANGES, st.booleans()), min_size=1, max_size=6),
+    waiting=st.booleans(),
+    turning=st.booleans(),
+)
+def test_the_events_of_one_message_are_delivered_together_as_one_by_one(
+    scans: list[tuple[list[float], bool]], waiting: bool, turning: bool
+) -> None:
+    """deliver_message (the node's way for a scan that feeds three events) leaves the supervisor
+    as deliver() one event after the other does: state, unreadable and ignored data, what it waits
+    for, the stamps heard; whether it takes its short way (nothing waited for, nothing commanded)
+    or not."""
+    together, apart = MAZE(seed=1, wait_for_data=waiting), MAZE(seed=1, wait_for_data=waiting)
+    for robot in (together, apart):
+        robot.watching = True
+        if turning:  # a command waits for its answer: the long way
+            robot.a8_Platform = "turning"
+            robot.commanded["a8_Platform"] = 1.0
+    for step, (ranges, stamped) in enumerate(scans):
+        message = Data({"ranges": ranges})
+        stamp = 1000.0 + step if stamped else None
+        together.deliver_message(SCAN_EVENTS, message, stamp)
+        for name in SCAN_EVENTS:
+            apart.deliver(name, message, True, stamp)
+        assert _mind(together) == _mind(apart)
+        assert together.tick() == apart.tick()
+
+
+def test_an_always_taken_event_of_a_message_ends_a_wait_and_is_heard_as_an_answer_is() -> None:
+    """A gate commanded open waits for its answer; a bump (always taken, from the same message)
+    shuts it: delivered with the message's other events, it ends the wait and its stamp is heard,
+    as when delivered alone."""
+    gate = load_module(plan_supervisor(synthesize_model(load_model(ROOT / "tests/models/belief/gate.rscd")))).Robot
+    together, apart = gate(seed=1), gate(seed=1)
+    for robot in (together, apart):
+        robot.watching = True
+        assert robot.perform("open") and set(robot.commanded) == {"a3_Gate"}
+    together.deliver_message(("bump",), None, 2000.0)
+    apart.deliver("bump", None, True, 2000.0)
+    for robot in (together, apart):
+        assert robot.snapshot()["automata"]["Gate"] == "shut"
+        assert robot.commanded == {} and robot.heard == {"a3_Gate": 2000.0}
+    # nothing commanded now: the short way, which notes the stamp too
+    together.deliver_message(("bump",), None, 2001.0)
+    assert together.heard == {"a3_Gate": 2000.0}  # shut already: nothing moved, nothing heard
+    assert together.perform("open")
+    together.commanded.clear()  # as when the command's time is no longer noted
+    together.deliver_message(("bump",), None, 2002.0)
+    assert together.heard == {"a3_Gate": 2002.0}

@@ -209,7 +209,10 @@ def test_ros1_a_coordinator_killed_three_ways_never_commands_what_the_robots_for
     client = threading.Thread(target=lambda: result.update(ros1.client(script, timeout=300)))
     client.start()
     kills, node = kill_when_told(control, client, node, lambda: ros1.node(package, event_log=str(log), **PARAMS))
-    assert kills == 3 and result["missed"] == [] and result["frozen"] == 0, (kills, result.get("missed"), result.get("frozen"))
+    assert kills == 3 and result["missed"] == [] and result["frozen"] == 0, (
+        (kills, result.get("missed"), result.get("frozen")),
+        ros1.processes.output(),
+    )
     found, checked = forbidden(logged_events(log), result["received"], result["sent"])
     assert checked > 10 and found == [], found
 

@@ -541,3 +541,38 @@ print(seen, goal.finished.is_set(), goal.status, goal.result)
     done = subprocess.run([ROS1_PYTHON, "-c", runtime + script], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "[('feedback', 30), ('done', 3, 42)] True 3 42"
+
+
+def test_a_driver_whose_report_service_hangs_is_asked_again_and_its_robot_goes_on(ros1: Ros1, tmp_path: Path) -> None:
+    """rospy's service calls have no time-out: the Platform's driver takes the first request and
+    never answers it. The node gives it up after server_timeout, says so, asks again, and moves
+    once the answer comes; before, the component stayed unconfirmed (nothing moved) for ever."""
+    package = build_package("examples/maze_solver.rscd", 1, "controller", tmp_path)
+    node = ros1.node(package, rate=20, seed=1, server_timeout=1.0)
+    result = ros1.client(
+        """
+from std_srvs.srv import Trigger, TriggerResponse
+start()
+asked = []
+def platform(request):
+    asked.append(time.time())
+    if len(asked) == 1:
+        time.sleep(60)  # the first request is never answered in time
+    return TriggerResponse(True, "ready")
+rospy.Service("/robosc/report/Distance", Trigger, lambda request: TriggerResponse(True, "sensing"))
+rospy.Service("/robosc/report/Platform", Trigger, platform)
+moves = Recorder("/cmd_vel", Twist)
+scan_pub = rospy.Publisher("/scan", LaserScan, queue_size=10)
+assert wait_for(lambda: scan_pub.get_num_connections() > 0, 10)
+def clear():
+    scan_pub.publish(scan([5.0] * 360))
+    return bool(moves.messages())
+moved = wait_for(clear, 20)
+done({"moved": moved, "asked": len(asked), "first_move_after": moves.items[0][0] - asked[0] if moved else None})
+""",
+        timeout=120,
+    )
+    assert result["moved"], result
+    assert result["asked"] >= 2 and result["first_move_after"] >= 1.0, result  # the second request was answered
+    assert node.poll() is None
+    assert "Platform's driver has not answered its report request for" in ros1.processes.output()

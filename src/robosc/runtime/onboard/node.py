@@ -169,6 +169,8 @@ class Topic(object):
         self.communications = communications  # the model's communications on it (one type)
         self.events = events
         self.takes: List[Tuple[str, Any]] = []  # (event, its communication) of a topic the robot publishes
+        # the events of takes when each takes the whole message as its data (object), else None
+        self.whole: Optional[Tuple[str, ...]] = None
         self.package, self.type_name = wire_type(communications[0])
         self.type: Any = None  # the message class, loaded by the adapter
         self.publisher: Any = None
@@ -410,6 +412,8 @@ class NodeCore(object):
                     topic.events.append(events["message"])
                     topic.takes.append((events["message"].name, c))
                     self.route[events["message"].name] = topic
+                    whole = all(communication.data == "object" for _, communication in topic.takes)
+                    topic.whole = tuple(name for name, _ in topic.takes) if whole else None
                 continue
             call = Call(c, events)
             (self.service_calls if c.kind == "service" else self.action_calls).append(call)
@@ -581,10 +585,11 @@ class NodeCore(object):
         try:
             if stamp is None or self.fresh(topic, stamp):
                 supervisor = self.supervisor
-                deliver = supervisor.deliver
-                for name, communication in topic.takes:
-                    value = message if communication.data == "object" else received(communication, message)
-                    deliver(name, value, True, stamp)
+                if topic.whole is not None:
+                    supervisor.deliver_message(topic.whole, message, stamp)
+                else:
+                    for name, communication in topic.takes:
+                        supervisor.deliver(name, received(communication, message), True, stamp)
                 if self.mode == "supervisor":
                     supervisor.settle()
                 elif self.ticks_on_message:

@@ -18,7 +18,8 @@ from __future__ import absolute_import, annotations, print_function
 
 import sys
 import threading
-from typing import Any, Callable, Optional
+import time
+from typing import Any, Callable, Dict, Optional
 
 import rospy
 
@@ -156,7 +157,7 @@ class SupervisorNode(NodeCore):
         for call in self.action_calls:
             call.client = actionlib.ActionClient(call.name, call.type)
         self.trigger = load("std_srvs", "srv", "Trigger")
-        self.asking: set[str] = set()  # components whose driver is being asked now
+        self.asking: Dict[str, float] = {}  # components whose driver is being asked now, since when
         for component in self.supervisor.COMPONENTS:
             self.report_clients[component] = rospy.ServiceProxy(REPORT_PREFIX + component, self.trigger)
         # subscriptions and servers last: their callbacks need everything above
@@ -208,10 +209,20 @@ class SupervisorNode(NodeCore):
     def ask_report(self, component: str, client: Any) -> bool:
         """Call the driver's report service on a thread (rospy calls are synchronous), one at a time
         per component; the answer comes back under the lock. Where no server is there yet, the
-        thread says so, and the next look asks again."""
-        if component in self.asking:
-            return False
-        self.asking.add(component)
+        thread says so, and the next look asks again. A request not answered within
+        ``server_timeout`` is given up (rospy's calls have no time-out of their own: a driver that
+        hangs would keep its component unconfirmed for ever): reported, asked again, and its answer,
+        should it come, is not taken."""
+        now = time.monotonic()
+        since = self.asking.get(component)
+        if since is not None:
+            if now - since < self.params["server_timeout"]:
+                return False
+            self.warnings(
+                "%s's driver has not answered its report request for %.1f s: asked again" % (component, now - since),
+                "report " + component,
+            )
+        self.asking[component] = now
 
         def ask() -> None:
             response = None
@@ -221,7 +232,9 @@ class SupervisorNode(NodeCore):
             except Exception:  # no driver offers it (yet), or it failed
                 pass
             with self.lock:
-                self.asking.discard(component)
+                if self.asking.get(component) != now:
+                    return  # given up on: a later request is out
+                del self.asking[component]
                 if response is None:
                     self.asked.pop(component, None)  # not asked: the next look tries again
                 else:

@@ -877,6 +877,52 @@ class Supervisor(object):
         self._delivered(event, value, saved, stamp)
         return True
 
+    def deliver_message(self, names: Tuple[str, ...], message: Any, stamp: Optional[float] = None) -> None:
+        """Deliver the uncontrollable events ``names`` of one message, each with the message as its
+        raw data, as :meth:`deliver` delivers them one by one. In the common case (each always
+        taken, nothing unconfirmed, awaited, asked for, waited for, unreadable or recorded) without
+        the bookkeeping those need: the cycle right after a message is what a robot waits for."""
+        if (
+            self.unconfirmed
+            or self.commanded
+            or self.asking
+            or self.waiting
+            or self._unreadable_since
+            or self.observer is not None
+            or not self.FREE.issuperset(names)
+        ):
+            for name in names:
+                self.deliver(name, message, True, stamp)
+            return
+        events, getter = self.EVENT, type(self).GETTER
+        answered = self.ANSWERED if stamp is not None and self.watching else ()
+        when = stamp if stamp is not None else 0.0  # (read only with answered)
+        for place in range(len(names)):
+            event = events[names[place]]
+            value = message
+            if event.convert is not None:
+                try:
+                    value = event.convert[0](message)  # the enum's rules, as convert() applies them
+                except Exception as error:
+                    self._unreadable(event, _unreadable_data(event.convert[1], error))
+                    break
+            saved = getter(self)
+            try:
+                getattr(self, event.method)(value)
+            except Unreadable as error:  # undone, as if it never came
+                for attribute, before in zip(self.ATTRIBUTES, saved):
+                    setattr(self, attribute, before)
+                self._unreadable(event, error)
+                break
+            self._dirty = True
+            for index, attribute in answered:
+                if getattr(self, attribute) is not saved[index]:
+                    self.heard[attribute] = max(when, self.heard.get(attribute, when))
+        else:
+            return
+        for name in names[place + 1 :]:  # after unreadable data: one by one, as deliver() takes them
+            self.deliver(name, message, True, stamp)
+
     def _not_taken(self, name: str, stamp: Optional[float]) -> Optional[str]:
         """Why the uncontrollable event ``name`` (stamped ``stamp``) is not taken here, or None:
         the plant cannot take it, or no component that answers it waits for it."""
