@@ -274,6 +274,7 @@ blocked.clear()
 scan_pub.publish(scan([5.0] * 360))
 assert wait_for(lambda: state.value("Distance.front") == "no_wall_front", 5)
 assert wait_for(lambda: state.last()["health"]["held"] is False, 5), state.last()  # (no_wall_front is also the start)
+assert wait_for(lambda: not state.last()["health"]["unconfirmed"], 10), state.last()  # the platform's driver said where it is
 controller_move.publish(forward)  # the way is free: allowed
 assert wait_for(lambda: robot_moves.messages(), 5), "an allowed command was not forwarded"
 controller_left.publish(Int16(data=90))  # no wall in front: turning left is not allowed

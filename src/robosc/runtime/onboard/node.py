@@ -590,10 +590,7 @@ class NodeCore(object):
                 else:
                     for name, communication in topic.takes:
                         supervisor.deliver(name, received(communication, message), True, stamp)
-                if self.mode == "supervisor":
-                    supervisor.settle()
-                elif self.ticks_on_message:
-                    supervisor.tick()
+                self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)
         self.checkpoint()
