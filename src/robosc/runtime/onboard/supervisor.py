@@ -867,15 +867,24 @@ class Supervisor(object):
             why = self._not_taken(name, stamp)
             if why is not None:
                 return self.ignore(name, why)
-        saved = type(self).GETTER(self)
-        try:
-            getattr(self, event.method)(value)
-        except Unreadable as error:  # the effect could not read the data: undone, as if it never came
-            for attribute, before in zip(self.ATTRIBUTES, saved):
-                setattr(self, attribute, before)
-            return self._unreadable(event, error)
+        saved = self._apply(event, value)
+        if saved is None:
+            return False
         self._delivered(event, value, saved, stamp)
         return True
+
+    def _apply(self, event: Event, value: Any) -> Optional[Tuple[Any, ...]]:
+        """Perform the uncontrollable ``event``'s effect with ``value``: every field's value before
+        it, or None when the effect could not read the data (undone, as if it never came; reported)."""
+        saved: Tuple[Any, ...] = type(self).GETTER(self)
+        try:
+            getattr(self, event.method)(value)
+        except Unreadable as error:
+            for attribute, before in zip(self.ATTRIBUTES, saved):
+                setattr(self, attribute, before)
+            self._unreadable(event, error)
+            return None
+        return saved
 
     def deliver_message(self, names: Tuple[str, ...], message: Any, stamp: Optional[float] = None) -> None:
         """Deliver the uncontrollable events ``names`` of one message, each with the message as its
@@ -894,7 +903,7 @@ class Supervisor(object):
             for name in names:
                 self.deliver(name, message, True, stamp)
             return
-        events, getter = self.EVENT, type(self).GETTER
+        events = self.EVENT
         answered = self.ANSWERED if stamp is not None and self.watching else ()
         when = stamp if stamp is not None else 0.0  # (read only with answered)
         for place in range(len(names)):
@@ -906,13 +915,8 @@ class Supervisor(object):
                 except Exception as error:
                     self._unreadable(event, _unreadable_data(event.convert[1], error))
                     break
-            saved = getter(self)
-            try:
-                getattr(self, event.method)(value)
-            except Unreadable as error:  # undone, as if it never came
-                for attribute, before in zip(self.ATTRIBUTES, saved):
-                    setattr(self, attribute, before)
-                self._unreadable(event, error)
+            saved = self._apply(event, value)
+            if saved is None:
                 break
             self._dirty = True
             for index, attribute in answered:
