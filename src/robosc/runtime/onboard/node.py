@@ -281,7 +281,6 @@ class NodeCore(object):
         self.text_publishers: Dict[str, Any] = {}  # made by the adapter
         self.text_type: Any = None
         self.still = frozenset(robot_class.STILL)
-        self.ticks_on_message = bool(self.params["tick_on_message"])
         self._plan_routes(robot_class)
 
     # ---- after each callback and cycle -------------------------------------------------------
@@ -569,7 +568,7 @@ class NodeCore(object):
     def after_message(self) -> None:
         if self.mode == "supervisor":
             self.supervisor.settle()
-        elif self.ticks_on_message:
+        elif self.params["tick_on_message"]:
             self.supervisor.tick()
 
     def publish_state(self) -> None:
