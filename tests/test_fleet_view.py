@@ -59,6 +59,7 @@ for (const shape of document.querySelectorAll('#map polygon.cell')) {
 }
 const person = document.getElementById('person');
 return {rows, cells, status: document.getElementById('status').textContent,
+        clock: document.getElementById('clock').textContent,
         feed: Array.from(document.querySelectorAll('#feed li')).map((li) => li.textContent),
         person: person ? person.getAttribute('visibility') : null,
         door: document.getElementById('door')?.getAttribute('class'),
@@ -107,6 +108,7 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
         assert wait_until(lambda: page(browser)["status"] == "live", 20), log.read_text()
         assert wait_until(lambda: all(r["body"] == "visible" for r in page(browser)["rows"].values()), 10)
         assert sorted(page(browser)["rows"]) == list(ROBOTS)
+        assert re.fullmatch(r"\d+\.\d s", page(browser)["clock"]), page(browser)["clock"]  # simulated seconds
 
         # the cells as the rows say, every time we look; a reservation and the person seen on the way
         reserved = person_cell = False
@@ -215,6 +217,12 @@ def test_sim_view_on_ros2_shows_the_coordinator_packages_events_and_stays_until_
             assert wait_until(lambda: placed() and all(row["cell"] in ("depot", "c1", "c2", "c3", "shelf")
                                                        for row in page(browser)["rows"].values()), 20), page(browser)
             consistent(page(browser))
+            # the coordinator follows the simulation's clock, its first record (before any event) too
+            assert re.fullmatch(r"\d+\.\d s", page(browser)["clock"]), page(browser)["clock"]
+            # a deployed coordinator's stamps are the wall clock's: shown as the time of day
+            wall = 1795710280.25
+            shown = browser.execute_script("return [stamp(175.94), stamp(arguments[0])];", wall)
+            assert shown == ["175.9 s", time.strftime("%H:%M:%S", time.localtime(wall)) + ".2"], shown
             shoot(browser, tmp_path, "fleet_view_remote.png")
             # the run ends and the graph goes: no pose comes any more, and the page says so per robot
             assert wait_until(lambda: "still serving the fleet's live view" in log.read_text(), 600), log.read_text()

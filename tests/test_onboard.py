@@ -348,6 +348,18 @@ def test_view_topics_carry_events_only_while_someone_listens() -> None:
     assert node.texts[1][0] == "live_view/events" and json.loads(node.texts[1][1])["event"] is None
 
 
+def test_the_state_record_a_view_starts_from_is_stamped_by_the_nodes_clock_as_its_events_are() -> None:
+    """Under use_sim_time the node's clock is the simulation's: a page must not start from the
+    wall clock and then go on in simulated seconds."""
+    node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
+    records: list[dict[str, Any]] = []
+    node.sinks.append(records.append)
+    node.start_outputs(type(node.supervisor), lambda: 175.94, lambda: None)
+    node.receive(node.inputs["/scan"], Data({"ranges": [0.3] + [5.0] * 359}))
+    assert records and {r["time"] for r in records} == {175.94}
+    assert node.state_record()["time"] == 175.94
+
+
 def test_view_page_is_read_only_when_asked_for() -> None:
     off = FakeNode("examples/maze_solver.rscd", "controller", view_topics=False)
     assert off.view_page(type(off.supervisor)) is None and off.logs == [] and not off.view_topics

@@ -266,6 +266,7 @@ class NodeCore(object):
                 "or an event that tells)" % (", ".join(sorted(self.supervisor.unsure())), REPORT_PREFIX),
             )
         self.sinks: List[Callable[[Dict[str, Any]], Any]] = []
+        self.clock: Callable[[], float] = time.time  # what records are stamped with (start_outputs sets the node's)
         self.recorder: Optional[Recorder] = None
         self.event_log: Optional[EventLog] = None
         path = self.params["event_log"]
@@ -424,6 +425,7 @@ class NodeCore(object):
         """The node's outputs around the adapter's ``create`` (its publishers, subscribers,
         services and actions): the live view and the event log first, before anything can
         deliver an event, the view topics' page and state once their publishers exist."""
+        self.clock = clock
         page = self.view_page(robot_class)
         self.live_view = self.open_live_view(page)
         self.start_recording(self.live_view.publish if self.live_view is not None else None, clock)
@@ -494,9 +496,10 @@ class NodeCore(object):
         return view
 
     def state_record(self) -> Dict[str, Any]:
-        """A record of no event with the current state: what a new page starts from."""
+        """A record of no event with the current state: what a new page starts from, stamped
+        by the node's clock as its events are (the simulation's under ``use_sim_time``)."""
         return {
-            "time": round(time.time(), 6),
+            "time": round(self.clock(), 6),
             "event": None,
             "controllable": False,
             "data": None,
