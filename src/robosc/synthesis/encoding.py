@@ -11,7 +11,7 @@ a map from each value they can take to the BDD of where they take it.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from dd import cudd
@@ -214,6 +214,37 @@ class Encoding:
         else:
             found = cudd.and_exists(relation.bdd, self.bdd.let(relation.to_primed, target), relation.primed)
         return found if relation.guard is None else found & relation.guard
+
+    def pre_together(self, relations: Sequence[Relation]) -> Callable[[Relation, BDD], BDD]:
+        """:meth:`pre` for ``relations`` applied one after the other to the same sets (saturation's
+        relations of one level): the target is renamed to the next state once for all of them, not
+        once per relation. Each relation is widened to keep the bits the others change (``b' = b``),
+        so that one renaming of those bits serves all; renaming was half of a counted warehouse's
+        synthesis (8 robots: 2.6 s of 4.1, 50,514 preimages)."""
+        changed = sorted({b for r in relations for b in r.bits}, key=self.bdd.level_of_var)
+        if len(relations) < 2 or not changed:
+            return self.pre
+        primed = [b + "'" for b in changed]
+        to_primed = dict(zip(changed, primed, strict=True))
+        widened: dict[int, BDD] = {}
+        for relation in relations:
+            kept = self.bdd.true
+            for bit in changed:
+                if bit not in relation.bits:
+                    kept &= self.bdd.var(bit).equiv(self.bdd.var(bit + "'"))
+            widened[id(relation)] = relation.bdd & kept
+        last: list[BDD] = []  # the last target and its renaming
+
+        def pre(relation: Relation, target: BDD) -> BDD:
+            self.preimages += 1
+            if self.watch is not None:
+                self.watch.step()
+            if not last or last[0] != target:
+                last[:] = [target, self.bdd.let(to_primed, target)]
+            found = cudd.and_exists(widened[id(relation)], last[1], primed)
+            return found if relation.guard is None else found & relation.guard
+
+        return pre
 
     def post(self, relation: Relation, source: BDD) -> BDD:
         """States reached by a transition in ``relation`` from ``source``."""

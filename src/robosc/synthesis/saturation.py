@@ -73,6 +73,8 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
     tops = sorted(by_top)
     if not tops:
         return start
+    # a level's relations are applied to the same set one after the other: preimages rename it once
+    steps = {t: enc.pre_together(by_top[t]) if step == enc.pre else step for t in tops}
     names = {bdd.level_of_var(name): name for name in bdd.vars}
     done: dict[Key, Entry] = {}  # saturated()
     walked: dict[Key, Entry] = {}  # below()
@@ -123,10 +125,11 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
         if got is not None:
             return got[2]
         q = below(p, c, i + 1)
+        apply = steps[tops[i]]
         while True:
             before = q
             for relation in by_top[tops[i]]:
-                grown = q | (step(relation, q) & c)
+                grown = q | (apply(relation, q) & c)
                 if grown != q:
                     q = below(grown, c, i + 1)
             if q == before:
