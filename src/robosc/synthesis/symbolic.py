@@ -123,7 +123,15 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     while True:
         rounds += 1
         watch.phase("bad states", rounds)
-        bad = closure(enc, bad, uncontrollable, explore)
+        closed = closure(enc, bad, uncontrollable, explore)
+        # from the second round on, bad holds every state the last round found unable to reach a
+        # marked one; where no uncontrollable event leads into it from outside and no event
+        # branches (so the steps are the same), this round's nonblocking would find the same good
+        # states (each reaches a marked state through good ones only): done, without computing it
+        # again (it was 6.5 s of a 16-robot warehouse's 14.6)
+        if rounds > 1 and closed == bad and not branching:
+            break
+        bad = closed
         steps = [
             r.restrict(~enc.pre(relation[events[i]], bad)) if i in branching else r for i, r in enumerate(restricted)
         ]
