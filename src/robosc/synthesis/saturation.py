@@ -147,5 +147,6 @@ def fixed_point(enc: Encoding, start: BDD, relations: Iterable[Relation], step: 
     finally:
         done.clear()  # the closures above refer to each other: free the BDDs now, not at collection
         walked.clear()
+        steps.clear()  # (the preimage steps keep their widened relations and last renaming)
         bdd.configure(reordering=reordering)
         sys.setrecursionlimit(depth)
