@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 
 def transfer_line(n: int) -> str:
     """N machines in a row with a one-slot buffer between each pair (Ramadge-Wonham's
@@ -393,6 +395,17 @@ def crossing(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+def warehouse_example(n: int) -> str:
+    """The bundled ``examples/warehouse.rscd`` with N robots (``component bot[N]``): moves that
+    take time and may stop, a door, one charger a robot uses at most once between tasks, the
+    person's cell (26 states per robot)."""
+    text = (Path(__file__).resolve().parent.parent / "examples" / "warehouse.rscd").read_text()
+    sized = text.replace("component bot[3]", f"component bot[{n}]", 1)
+    if sized == text:
+        raise ValueError("examples/warehouse.rscd no longer declares component bot[3]")
+    return sized
+
+
 FLEETS = {
     "ring": ring,
     "warehouse": warehouse,
@@ -402,4 +415,5 @@ FLEETS = {
     "lift": lift,
     "ring_homes": ring_homes,
     "crossing": crossing,
+    "warehouse_example": warehouse_example,
 }  # fleet families (benchmarks/fleet_synthesis.py): N robots

@@ -9,7 +9,9 @@ every other robot) and, as ``ring_instances`` / ``warehouse_instances``, with in
 own automaton; ``ring_homes`` — the ring where each robot must be able to get back to a home
 of its own (copies by hand that differ in their marked state); ``crossing`` — two kinds of
 robots (two instance arrays, alike automata) on two one-way loops that share two crossing
-cells, each for one robot of either kind.
+cells, each for one robot of either kind; ``warehouse_example`` — the bundled
+``examples/warehouse.rscd`` with N robots (moves that take time and may stop, a door, one
+charger, the person's cell: 26 states per robot).
 
 Methods (``SynthesisOptions.fleet``): ``counted`` (the default: robots that are copies counted
 per state) and ``monolithic`` (the reference). Each run is a process of its own with a time
