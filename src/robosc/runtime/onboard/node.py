@@ -428,23 +428,21 @@ class NodeCore(object):
         self.clock = clock
         page = self.view_page(robot_class)
         self.live_view = self.open_live_view(page)
-        self.start_recording(self.live_view.publish if self.live_view is not None else None, clock)
+        self.start_recording(self.live_view.publish if self.live_view is not None else None)
         create()
         self.start_view_topics(page)
         self.checkpoint()  # the first report on health, now that its publisher exists
 
-    def start_recording(
-        self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None, clock: Callable[[], float] = time.time
-    ) -> None:
+    def start_recording(self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
         """Events go to the event log, the live view (a sink) and the view topics (while anyone
-        listens), if any, stamped by ``clock``: the node's clock, which is the simulation's under
-        ``use_sim_time``."""
+        listens), if any, stamped by ``self.clock``: the node's clock, which is the simulation's
+        under ``use_sim_time``."""
         if live_view is not None:
             self.sinks.append(live_view)
         if self.view_topics:
             self.sinks.append(Gated(self.view_event, lambda: self.text_subscribers(VIEW_EVENTS_TOPIC) > 0))
         if self.sinks:
-            self.recorder = Recorder(self.supervisor, self.sinks, clock)
+            self.recorder = Recorder(self.supervisor, self.sinks, self.clock)
             self.observe()
 
     def observe(self) -> None:
