@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robosc.synthesis.encoding import Encoding, Relation
+from robosc.synthesis.fixedpoints import within
 from robosc.synthesis.saturation import fixed_point, top
 
 BITS = 6
@@ -23,7 +24,8 @@ def bit(state: int, k: int) -> bool:
 class System:
     """Random relations, each changing a bit or two and reading a few bits near them."""
 
-    def __init__(self, seed: int) -> None:
+    def __init__(self, seed: int, single: float = 0.0) -> None:
+        """``single``: the share of relations that set the bits they change to one value."""
         rng = random.Random(seed)
         self.enc = Encoding.__new__(Encoding)  # only the BDD manager and the image counters
         self.enc.bdd = cudd.BDD()
@@ -33,6 +35,7 @@ class System:
         self.enc.bdd.configure(reordering=False)
         self.edges: list[set[tuple[int, int]]] = []
         self.relations: list[Relation] = []
+        self.tables: list[tuple[list[int], list[int], set[tuple[tuple[bool, ...], tuple[bool, ...]]]]] = []
         for _ in range(rng.randint(1, 6)):
             low = rng.randrange(BITS)
             changed = sorted(rng.sample(range(low, min(BITS, low + 3)), rng.randint(1, min(2, BITS - low))))
@@ -43,6 +46,9 @@ class System:
             table = {
                 (old, new) for old in _tuples(len(read)) for new in _tuples(len(changed)) if rng.random() < 0.35
             }
+            if rng.random() < single:  # one edge from known places: every transition lands on one value
+                one = rng.choice(_tuples(len(changed)))
+                table = {(old, one) for old, _ in table}
             edges = set()
             for s in STATES:
                 if guarded and tuple(bit(s, k) for k in guard_bits) not in guard_ok:
@@ -53,6 +59,7 @@ class System:
                     if (tuple(bit(s, k) for k in read), tuple(bit(t, k) for k in changed)) in table:
                         edges.add((s, t))
             self.edges.append(edges)
+            self.tables.append((read, changed, table))
             bdd = self.enc.bdd.false
             for old, new in table:
                 bdd |= self.cube(dict(zip(read, old, strict=True))) & self.cube(dict(zip(changed, new, strict=True)), "'")
@@ -151,3 +158,30 @@ def test_saturation_is_chosen_where_few_relations_reach_the_top_of_the_order() -
     assert local(enc, [*spread[:4], moving(0)])  # one in five from the top
     assert local(enc, [*spread[:2], moving(2, reading=0)])  # one in three
     assert not local(enc, [*spread[:3], moving(2, reading=0), moving(4, reading=0)])  # two in five
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(0, 2**32), st.booleans(), st.booleans(), st.sampled_from(["saturation", "chained", "each"]))
+def test_relations_landing_on_one_value_step_as_any_other(seed: int, forward: bool, constrained: bool, how: str) -> None:
+    """A relation whose transitions all set the bits they change to the same values steps by a
+    cofactor (preimages) or without renaming (images), and one that cannot land where it starts
+    is applied once per round: the same least fixed point as the explicit one, every way."""
+    system = System(seed, single=0.6)
+    enc = system.enc
+    relations = [enc.fixed_target(r) for r in system.relations]
+    for relation, (read, changed, table) in zip(relations, system.tables, strict=True):
+        targets = {new for _, new in table}
+        assert (relation.target is not None) == (len(targets) == 1), (relation.target, targets)
+        if relation.target is not None:
+            (target,) = targets
+            assert relation.target == {f"x{k}": value for k, value in zip(changed, target, strict=True)}
+            starts = {tuple(old[read.index(k)] for k in changed) for old, _ in table}
+            assert relation.once == (target not in starts)
+    rng = random.Random(seed + 1)
+    start = {s for s in STATES if rng.random() < 0.08} or {0}
+    inside = {s for s in STATES if rng.random() < 0.7} if constrained else None
+    step = enc.post if forward else enc.pre
+    within_bdd = None if inside is None else system.states(inside)
+    explore = "chained" if how == "each" else how
+    found = within(enc, system.states(start), relations, step, within_bdd, explore, each=how == "each")
+    assert system.members(found) == explicit(system.edges, start, inside, forward)

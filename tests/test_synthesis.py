@@ -639,3 +639,35 @@ def test_an_event_that_may_lead_to_a_good_or_a_bad_state_is_disabled_and_its_goo
     explicit = synthesize_explicit(build_network(model))
     assert result.reachable_states == explicit.reachable_states == 1
     assert not result.allows("go", result.state({"Arm": "idle"}))
+
+
+def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeypatch) -> None:
+    """A requirement written per robot (`R4.at0 => ... and R4.at1 => ...`) is kept as one case per
+    location its event leaves: each case a small BDD where the whole one is large, their union
+    the whole where the event can happen, and the supervisor the same as from the whole."""
+    import families
+    from robosc.synthesis import cases
+    from robosc.synthesis.options import SynthesisOptions
+    from robosc.synthesis.symbolic import fixpoint
+
+    model = load(families.ring_homes(5))
+    network = build_network(model)
+    fp = fixpoint(network)
+    enc = fp.enc
+    last = network.event("go4")
+    whole = enc.boolean(next(iter(network.requirements_on(last))).condition)
+    assert len(fp.cases[last]) == 10  # R4's ten zones
+    assert all(case.condition.dag_size * 10 < whole.dag_size for case in fp.cases[last])
+    for event in network.controllable:
+        (requirement,) = network.requirements_on(event)
+        expected = fp.enabled[event] & enc.boolean(requirement.condition)
+        assert fp.enabled[event] & fp.required(event) == expected, event.name
+    assert all(len(fp.cases[e]) == 1 and fp.cases[e][0].region == enc.true for e in network.uncontrollable)
+
+    def supervisor() -> tuple[int, list[tuple[str, str | None]]]:
+        result = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))
+        return result.reachable_states, [(g.event.name, render(g.added) if g.added else None) for g in result.guards]
+
+    split = supervisor()
+    monkeypatch.setattr(cases, "splitter", lambda *_: None)
+    assert supervisor() == split

@@ -316,7 +316,7 @@ def _required_moves(fp: Any) -> tuple[list[tuple[Event, Relation]], BDD]:
     no marked state can be reached over them at all (supervisor or not). Kept per result."""
     if "required moves" not in fp.memo:
         enc = fp.enc
-        restricted = [(e, fp.relation[e].restrict(fp.required[e])) for e in enc.network.events]
+        restricted = [(e, fp.relation[e].restrict(c.allowed)) for e in enc.network.events for c in fp.cases[e]]
         dead = enc.valid() & ~closure(enc, fp.marked, (r for _, r in restricted))
         fp.memo["required moves"] = (restricted, dead)
     found: tuple[list[tuple[Event, Relation]], BDD] = fp.memo["required moves"]

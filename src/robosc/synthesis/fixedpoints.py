@@ -47,7 +47,7 @@ def within(
         for relation in relations:
             result = grown(relation, result)
             # each: a counted fleet's event moves one robot, so k robots in one state need it k times
-            while each and (more := grown(relation, result)) != result:
+            while each and not relation.once and (more := grown(relation, result)) != result:
                 result = more
         if result == before:
             return result

@@ -18,6 +18,7 @@ from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
 from robosc.record import field, record
+from robosc.synthesis.cases import Case, requirement_cases, union
 from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.explain import explain
 from robosc.synthesis.fixedpoints import closure, edge_order, within
@@ -35,7 +36,7 @@ class Fixpoint:
 
     enc: Encoding
     relation: dict[Event, Relation]
-    required: dict[Event, BDD]
+    cases: dict[Event, tuple[Case, ...]]  # each event's requirements by where its automaton is
     enabled: dict[Event, BDD]
     initial: BDD
     marked: BDD
@@ -45,6 +46,14 @@ class Fixpoint:
     reachable: BDD
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
     describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
+
+    def required(self, event: Event) -> BDD:
+        """Where the requirements allow ``event``, among the states where it can happen (the
+        union of its cases, made on request and kept: as one BDD it can be far larger than they)."""
+        key = ("required", event)
+        if key not in self.memo:
+            self.memo[key] = union(self.cases[event])
+        return self.memo[key]
 
     def describe(self, state: NetworkState) -> str:
         """``state`` in words, for explanations."""
@@ -88,9 +97,9 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     for event in network.events:
         relation[event] = event_relation(enc, event)
         watch.beat()
-    required = {e: enc.true for e in network.events}
-    for requirement in network.requirements:
-        required[requirement.event] &= enc.boolean(requirement.condition)
+    cases = {}
+    for event in network.events:
+        cases[event] = requirement_cases(enc, event, [r.condition for r in network.requirements_on(event)])
         watch.beat()
     enabled = {}
     for event, moves in relation.items():
@@ -110,14 +119,14 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     explore = options.explore
     events = edge_order(network, options.edges)  # the order the chained loops apply the events in
     uncontrollable = [relation[e] for e in events if not e.controllable]
-    restricted = [relation[e].restrict(required[e]) for e in events]
     requirement_bad = enc.false
     for event in network.uncontrollable:
-        requirement_bad |= enabled[event] & ~required[event]
+        for case in cases[event]:
+            requirement_bad |= enabled[event] & case.region & ~case.condition
 
     # a controllable event with several outcomes is allowed only where none of them is bad, so
     # a state reaches a marked one through it only from there (one outcome good is not enough)
-    branching = {i for i, e in enumerate(events) if e.controllable and network.branching(e)}
+    branching = {e for e in events if e.controllable and network.branching(e)}
     bad = requirement_bad
     rounds = 0
     while True:
@@ -132,9 +141,12 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
         if rounds > 1 and closed == bad and not branching:
             break
         bad = closed
-        steps = [
-            r.restrict(~enc.pre(relation[events[i]], bad)) if i in branching else r for i, r in enumerate(restricted)
-        ]
+        steps = []
+        for event in events:
+            into_bad = ~enc.pre(relation[event], bad) if event in branching else None
+            for case in cases[event]:
+                step = enc.fixed_target(relation[event].restrict(case.allowed))
+                steps.append(step if into_bad is None else step.restrict(into_bad))
         # nonblocking: who reaches a marked state through good states (chained, each event to
         # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
         watch.phase("nonblocking", rounds)
@@ -154,19 +166,26 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     kept = ~bad
     reaching = (initial & bad) == enc.false
     allowed: dict[Event, BDD] = {}
-    guards: dict[Event, BDD] = {}
+    guards: dict[Event, list[BDD]] = {}
     for e in network.controllable:
         into_bad = enc.pre(relation[e], bad)
-        allowed[e] = enabled[e] & required[e] & kept & ~into_bad
+        free = enabled[e] & kept & ~into_bad
+        allowed[e] = enc.false
+        for case in cases[e]:
+            allowed[e] |= free & case.allowed
         if reaching:
-            mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept & required[e]
-            guards[e] = required[e] & ~into_bad if mixed != enc.false else required[e]
+            mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept
+            if any((mixed & case.allowed) != enc.false for case in cases[e]):
+                guards[e] = [case.allowed & ~into_bad for case in cases[e]]
+            else:
+                guards[e] = [case.allowed for case in cases[e]]
     reachable = enc.false
     watch.phase("reachable")
     if reaching:
-        steps = [relation[e].restrict(guards[e]) if e.controllable else relation[e] for e in events]
+        steps = [enc.fixed_target(relation[e].restrict(g)) for e in events if e.controllable for g in guards[e]]
+        steps += [relation[e] for e in events if not e.controllable]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
-    return Fixpoint(enc, relation, required, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
+    return Fixpoint(enc, relation, cases, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
 
 def synthesize_monolithic(
@@ -195,7 +214,9 @@ def synthesize_monolithic(
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
-        care = fp.reachable & fp.enabled[event] & fp.required[event]
+        care = enc.false
+        for case in fp.cases[event]:
+            care |= fp.reachable & fp.enabled[event] & case.allowed
         beyond = ~enc.pre(fp.relation[event], fp.bad)
         added: m.Expr | None = None
         if (care & ~beyond) != enc.false:

@@ -1,0 +1,88 @@
+"""An event's requirements split by where its own automaton is: one case per location the
+event leaves, each with the requirements as they read there.
+
+A requirement written per robot reads the robot's own state and then the others'
+(``R3.at5 => !(R0.at6 or R1.at6 or ...)``). As one BDD it must remember, for every robot
+above R3 in the variable order, which of R3's cases it spoils: its size grows exponentially
+with the robots before R3 (robots with homes of their own, 8 robots: 5.3 M nodes, 30 s, before
+any fixed point). With R3's location known, each case is a plain conjunction over the others,
+linear in their number. A transition of the event leaves one of these locations, so its
+preimages and images need only the case of that location; the union of the cases is the
+requirements wherever the event can happen, which is all any use of them asks."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from robosc.language import model as m
+from robosc.language.simplify import fold, literal, replace
+from robosc.plant.network import Automaton, Event, Network
+from robosc.record import record
+from robosc.synthesis.encoding import BDD, Encoding
+
+
+@record
+class Case:
+    """Where the event's automaton is in one location it leaves on the event (``region``; the
+    whole state space where the requirements are not split), and where the requirements hold
+    there (``condition``)."""
+
+    region: BDD
+    condition: BDD
+
+    @property
+    def allowed(self) -> BDD:
+        return self.region & self.condition
+
+
+def splitter(network: Network, event: Event, condition: m.Expr) -> Automaton | None:
+    """The automaton to split ``event``'s requirements by: of those whose edges take ``event``
+    from two or more locations, the one whose locations ``condition`` names most (None where it
+    names none)."""
+    named = Counter(id(n.state) for n in m.walk(condition) if isinstance(n, m.StateRef))
+    best, most = None, 0
+    for automaton in network.automata:
+        sources = {id(edge.source) for edge in automaton.edges if edge.event is event}
+        if len(sources) < 2:
+            continue
+        score = sum(named[id(location)] for location in automaton.locations)
+        if score > most:
+            best, most = automaton, score
+    return best
+
+
+def at_location(condition: m.Expr, automaton: Automaton, location: m.State) -> m.Expr:
+    """``condition`` where ``automaton`` is in ``location``, its location references decided and
+    folded away."""
+    own = {id(s) for s in automaton.locations}
+
+    def decide(e: m.Expr) -> m.Expr | None:
+        if isinstance(e, m.StateRef) and id(e.state) in own:
+            return literal(e.state is location, e.span)
+        return None
+
+    return fold(replace(condition, decide))
+
+
+def union(cases: tuple[Case, ...]) -> BDD:
+    """Where the requirements allow the event, among the states where its automaton can take it."""
+    result = cases[0].allowed
+    for case in cases[1:]:
+        result |= case.allowed
+    return result
+
+
+def requirement_cases(enc: Encoding, event: Event, conditions: list[m.Expr]) -> tuple[Case, ...]:
+    """``event``'s requirements (their ``conditions``) as cases of where its automaton is (one
+    case over everything where none is worth splitting by)."""
+    if not conditions:
+        return (Case(enc.true, enc.true),)
+    network = enc.network
+    whole = conditions[0]
+    for condition in conditions[1:]:
+        whole = m.Binary("and", whole, condition, m.BOOLEAN, condition.span)
+    automaton = splitter(network, event, whole)
+    if automaton is None:
+        return (Case(enc.true, enc.boolean(whole)),)
+    sources = list({id(e.source): e.source for e in automaton.edges if e.event is event}.values())
+    return tuple(Case(enc.at(source), enc.boolean(at_location(whole, automaton, source))) for source in sources)
