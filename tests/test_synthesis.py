@@ -658,6 +658,9 @@ def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeyp
     whole = enc.boolean(next(iter(network.requirements_on(last))).condition)
     assert len(fp.cases[last]) == 10  # R4's ten zones
     assert all(case.condition.dag_size * 10 < whole.dag_size for case in fp.cases[last])
+    first = network.event("go0")  # R0 comes first in the order: its requirement is small, kept whole
+    assert len(fp.cases[first]) == 1 and fp.cases[first][0].region == enc.true
+    assert fp.cases[first][0].condition.dag_size <= cases.WHOLE_AT_MOST
     for event in network.controllable:
         (requirement,) = network.requirements_on(event)
         expected = fp.enabled[event] & enc.boolean(requirement.condition)

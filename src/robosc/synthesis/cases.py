@@ -8,7 +8,8 @@ with the robots before R3 (robots with homes of their own, 8 robots: 5.3 M nodes
 any fixed point). With R3's location known, each case is a plain conjunction over the others,
 linear in their number. A transition of the event leaves one of these locations, so its
 preimages and images need only the case of that location; the union of the cases is the
-requirements wherever the event can happen, which is all any use of them asks."""
+requirements wherever the event can happen, which is all any use of them asks. Where that
+union is small, it is kept as one case (one relation is cheaper than many small ones)."""
 
 from __future__ import annotations
 
@@ -18,7 +19,9 @@ from robosc.language import model as m
 from robosc.language.simplify import fold, literal, replace
 from robosc.plant.network import Automaton, Event, Network
 from robosc.record import record
-from robosc.synthesis.encoding import BDD, Encoding
+from robosc.synthesis.encoding import BDD, SMALL_GUARD, Encoding
+
+WHOLE_AT_MOST = SMALL_GUARD  # BDD nodes: requirements this small where the event can happen are one case
 
 
 @record
@@ -85,4 +88,12 @@ def requirement_cases(enc: Encoding, event: Event, conditions: list[m.Expr]) -> 
     if automaton is None:
         return (Case(enc.true, enc.boolean(whole)),)
     sources = list({id(e.source): e.source for e in automaton.edges if e.event is event}.values())
-    return tuple(Case(enc.at(source), enc.boolean(at_location(whole, automaton, source))) for source in sources)
+    cases = tuple(Case(enc.at(source), enc.boolean(at_location(whole, automaton, source))) for source in sources)
+    # kept whole where that is small (one relation instead of one per case): the union is built
+    # until it outgrows what a relation takes in (it is the requirements where the event can happen)
+    together = enc.false
+    for case in cases:
+        together |= case.allowed
+        if together.dag_size > WHOLE_AT_MOST:
+            return cases
+    return (Case(enc.true, together),)
