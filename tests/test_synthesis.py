@@ -643,7 +643,7 @@ def test_an_event_that_may_lead_to_a_good_or_a_bad_state_is_disabled_and_its_goo
 
 def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeypatch) -> None:
     """A requirement written per robot (`R4.at0 => ... and R4.at1 => ...`) is kept as one case per
-    location its event leaves: each case a small BDD where the whole one is large, their union
+    location its event leaves where it is large as a whole: each case a small BDD, their union
     the whole where the event can happen, and the supervisor the same as from the whole."""
     import families
     from robosc.synthesis import cases
@@ -652,6 +652,9 @@ def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeyp
 
     model = load(families.ring_homes(5))
     network = build_network(model)
+    fp = fixpoint(network)
+    assert all(len(fp.cases[e]) == 1 for e in network.events)  # 5 robots: none is large yet
+    monkeypatch.setattr(cases, "WHOLE_AT_MOST", 2000)
     fp = fixpoint(network)
     enc = fp.enc
     last = network.event("go4")

@@ -182,8 +182,9 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     reachable = enc.false
     watch.phase("reachable")
     if reaching:
-        steps = [enc.fixed_target(relation[e].restrict(g)) for e in events if e.controllable for g in guards[e]]
-        steps += [relation[e] for e in events if not e.controllable]
+        steps = []
+        for e in events:  # in the events' order (a chained round's reach depends on it)
+            steps += [enc.fixed_target(relation[e].restrict(g)) for g in guards[e]] if e.controllable else [relation[e]]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
     return Fixpoint(enc, relation, cases, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
 
