@@ -13,6 +13,7 @@ from robosc.language.render import render
 from robosc.plant import build_network
 from robosc.synthesis import synthesize, synthesize_explicit
 from robosc.synthesis.restrictions import restriction
+from robosc.synthesis.state import NetworkState, initial_state
 
 # Ramadge & Wonham's small factory: machine 1 makes a part into a one-slot buffer,
 # machine 2 takes it out. A part made while the buffer is full overflows it.
@@ -669,6 +670,19 @@ def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeyp
         expected = fp.enabled[event] & enc.boolean(requirement.condition)
         assert fp.enabled[event] & fp.required(event) == expected, event.name
     assert all(len(fp.cases[e]) == 1 and fp.cases[e][0].region == enc.true for e in network.uncontrollable)
+    # where each event is allowed is asked of its cases, without making their union
+    start = initial_state(network)
+    moved = NetworkState(
+        tuple(a.initial if a.name != "R4" else next(s for s in a.locations if s.name == "at9") for a in network.automata),
+        start.values,
+    )  # R4 one zone past its home, right behind R0's: it may not move on while R0 is there
+    controllable = set(network.controllable)
+    assert fp.allowed_events(start) & controllable == controllable
+    assert fp.allowed_events(moved) & controllable == controllable - {last}
+    assert not fp.allowed.made
+    assert [fp.allows(e, moved) for e in network.controllable] == [
+        (fp.state(moved) & fp.allowed[e]) != enc.false for e in network.controllable
+    ]
 
     def supervisor() -> tuple[int, list[tuple[str, str | None]]]:
         result = synthesize_model(model, options=SynthesisOptions(fleet="monolithic"))

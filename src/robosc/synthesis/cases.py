@@ -14,6 +14,7 @@ union is not large, it is kept as one case (one relation is cheaper than many sm
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator, Mapping
 
 from robosc.language import model as m
 from robosc.language.simplify import fold, literal, replace
@@ -36,6 +37,35 @@ class Case:
     @property
     def allowed(self) -> BDD:
         return self.region & self.condition
+
+
+class Unions(Mapping[Event, BDD]):
+    """Each event's set as the union of its parts (one per case), made on first use and kept: a
+    part is small where the union can be as large as the requirements it holds (the ring of 8
+    robots copied by hand, where nothing is bad: 5.7 million nodes for where each event is allowed)."""
+
+    def __init__(self, parts: dict[Event, list[BDD]]) -> None:
+        self.parts = parts
+        self.made: dict[Event, BDD] = {}
+
+    def __getitem__(self, event: Event) -> BDD:
+        if event not in self.made:
+            parts = self.parts[event]
+            result = parts[0]
+            for part in parts[1:]:
+                result |= part
+            self.made[event] = result
+        return self.made[event]
+
+    def __iter__(self) -> Iterator[Event]:
+        return iter(self.parts)
+
+    def __len__(self) -> int:
+        return len(self.parts)
+
+    def meets(self, event: Event, states: BDD) -> bool:
+        """Whether ``states`` and ``event``'s set share a state (without making the union)."""
+        return any((states & part) != states.bdd.false for part in self.parts[event])
 
 
 def splitter(network: Network, event: Event, condition: m.Expr) -> Automaton | None:

@@ -18,7 +18,7 @@ from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
 from robosc.record import field, record
-from robosc.synthesis.cases import Case, requirement_cases, union
+from robosc.synthesis.cases import Case, Unions, requirement_cases, union
 from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.explain import explain
 from robosc.synthesis.fixedpoints import closure, edge_order, within
@@ -42,7 +42,7 @@ class Fixpoint:
     marked: BDD
     requirement_bad: BDD
     bad: BDD
-    allowed: dict[Event, BDD]  # controllable events: where the supervisor allows them
+    allowed: Unions  # controllable events: where the supervisor allows them (a part per case)
     reachable: BDD
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
     describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
@@ -63,13 +63,19 @@ class Fixpoint:
 
     def allows(self, event: Event, state: NetworkState) -> bool:
         """Whether ``event`` can happen in ``state`` under the supervisor."""
+        if event.controllable:
+            return self.allowed.meets(event, self.state(state))
         return bool((self.state(state) & self.where(event)) != self.enc.false)
 
     def allowed_events(self, state: NetworkState) -> frozenset[Event]:
         """The events the supervisor lets happen in ``state`` (:meth:`allows` for each, the state
         encoded once)."""
         here, false = self.state(state), self.enc.false
-        return frozenset(e for e in self.enc.network.events if (here & self.where(e)) != false)
+        return frozenset(
+            e
+            for e in self.enc.network.events
+            if (self.allowed.meets(e, here) if e.controllable else (here & self.where(e)) != false)
+        )
 
     def where(self, event: Event) -> BDD:
         """The states where the supervisor lets ``event`` happen."""
@@ -165,14 +171,12 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     # counter of a fleet through the valid states.)
     kept = ~bad
     reaching = (initial & bad) == enc.false
-    allowed: dict[Event, BDD] = {}
+    allowed: dict[Event, list[BDD]] = {}
     guards: dict[Event, list[BDD]] = {}
     for e in network.controllable:
         into_bad = enc.pre(relation[e], bad)
         free = enabled[e] & kept & ~into_bad
-        allowed[e] = enc.false
-        for case in cases[e]:
-            allowed[e] |= free & case.allowed
+        allowed[e] = [free & case.allowed for case in cases[e]]
         if reaching:
             mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept
             if any((mixed & case.allowed) != enc.false for case in cases[e]):
@@ -186,7 +190,7 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
         for e in events:  # in the events' order (a chained round's reach depends on it)
             steps += [enc.fixed_target(relation[e].restrict(g)) for g in guards[e]] if e.controllable else [relation[e]]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
-    return Fixpoint(enc, relation, cases, enabled, initial, marked, requirement_bad, bad, allowed, reachable)
+    return Fixpoint(enc, relation, cases, enabled, initial, marked, requirement_bad, bad, Unions(allowed), reachable)
 
 
 def synthesize_monolithic(
