@@ -225,3 +225,25 @@ def test_a_person_walks_the_script_and_gives_way_to_a_robot_in_front() -> None:
     behind = Pose(-0.7, 0.0, 0.0)  # as close, but the step leads away from it
     assert walker.velocity(3.0, 0.1, 0.0, 0.0, [behind]) == pytest.approx((0.5, 0.0))
     assert walker.velocity(3.0, 0.1, 5.0, 0.0, []) == (0.0, 0.0) and walker.done  # there: the walk is over
+
+
+def test_a_person_a_robot_keeps_standing_in_front_of_walks_round_it_after_a_while() -> None:
+    """A robot that stays in the person's way (it waits for the person, as the robots keep out of
+    the person's way): the person waits WAIT_AT_MOST seconds, then walks round it, never closer to
+    its edge than 0.3 m once within that, and gets where they were going."""
+    from robosc.sim.person import GIVE_WAY, WAIT_AT_MOST, Walker
+    from robosc.sim.world import Person, Pose
+
+    person = Person(((0.0, 0.0, 0.0), (3.0, 0.0, 0.0)), radius=0.25, speed=0.5, start=0.0)
+    walker = Walker(person, robot_radius=0.2)
+    robot = Pose(1.5, 0.0, 0.0)  # right on the way
+    x, y, now, dt, closest, waited = 0.0, 0.0, 0.0, 0.1, math.inf, 0.0
+    while not walker.done and now < 60:
+        vx, vy = walker.velocity(now, dt, x, y, [robot])
+        if (vx, vy) == (0.0, 0.0) and now > 0.0:
+            waited += dt
+        x, y, now = x + vx * dt, y + vy * dt, now + dt
+        closest = min(closest, math.hypot(x - robot.x, y - robot.y) - 0.25 - 0.2)
+    assert walker.done, (x, y, now)  # round the robot and there
+    assert WAIT_AT_MOST - dt <= waited <= WAIT_AT_MOST + 2 * dt  # it waited for the robot first
+    assert closest >= GIVE_WAY - 0.05 * dt, closest
