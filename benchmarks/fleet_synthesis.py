@@ -72,7 +72,7 @@ if method == "check":
     enc = fp.enc
     for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
         added = enc.boolean(theirs.added) if theirs.added is not None else enc.true
-        allowed = fp.enabled[mine.event] & fp.required(mine.event) & added
+        allowed = fp.enabled[mine.event] & fp.required[mine.event] & added
         assert fp.reachable & ~allowed.equiv(fp.allowed[mine.event]) == enc.false, mine.event.name
     print(json.dumps({"same": True}))
     raise SystemExit(0)

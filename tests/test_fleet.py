@@ -135,7 +135,7 @@ def agree_with_monolithic(text: str, least: int = 2) -> tuple[object, object]:
     for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
         assert mine.event is theirs.event
         added = enc.boolean(theirs.added) if theirs.added is not None else enc.true
-        allowed = fp.enabled[mine.event] & fp.required(mine.event) & added
+        allowed = fp.enabled[mine.event] & fp.required[mine.event] & added
         assert fp.reachable & ~allowed.equiv(fp.allowed[mine.event]) == enc.false, mine.event.name
     return mono, fleet
 

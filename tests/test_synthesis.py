@@ -668,7 +668,7 @@ def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeyp
     for event in network.controllable:
         (requirement,) = network.requirements_on(event)
         expected = fp.enabled[event] & enc.boolean(requirement.condition)
-        assert fp.enabled[event] & fp.required(event) == expected, event.name
+        assert fp.enabled[event] & fp.required[event] == expected, event.name
     assert all(len(fp.cases[e]) == 1 and fp.cases[e][0].region == enc.true for e in network.uncontrollable)
     # where each event is allowed is asked of its cases, without making their union
     start = initial_state(network)

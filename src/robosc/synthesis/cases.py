@@ -14,7 +14,7 @@ union is not large, it is kept as one case (one relation is cheaper than many sm
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 
 from robosc.language import model as m
 from robosc.language.simplify import fold, join, literal, replace
@@ -42,7 +42,8 @@ class Case:
 class Unions(Mapping[Event, BDD]):
     """Each event's set as the union of its parts (one per case), made on first use and kept: a
     part is small where the union can be as large as the requirements it holds (the ring of 8
-    robots copied by hand, where nothing is bad: 5.7 million nodes for where each event is allowed)."""
+    robots copied by hand, where nothing is bad: 5.7 million nodes for where each event is
+    allowed). Where the requirements allow each event, and where the supervisor does."""
 
     def __init__(self, parts: dict[Event, list[BDD]]) -> None:
         self.parts = parts
@@ -50,11 +51,7 @@ class Unions(Mapping[Event, BDD]):
 
     def __getitem__(self, event: Event) -> BDD:
         if event not in self.made:
-            parts = self.parts[event]
-            result = parts[0]
-            for part in parts[1:]:
-                result |= part
-            self.made[event] = result
+            self.made[event] = union(self.parts[event])
         return self.made[event]
 
     def __iter__(self) -> Iterator[Event]:
@@ -97,11 +94,11 @@ def at_location(condition: m.Expr, automaton: Automaton, location: m.State) -> m
     return fold(replace(condition, decide))
 
 
-def union(cases: tuple[Case, ...]) -> BDD:
-    """Where the requirements allow the event, among the states where its automaton can take it."""
-    result = cases[0].allowed
-    for case in cases[1:]:
-        result |= case.allowed
+def union(parts: Sequence[BDD]) -> BDD:
+    """The states in any of ``parts`` (one at least)."""
+    result = parts[0]
+    for part in parts[1:]:
+        result |= part
     return result
 
 

@@ -81,7 +81,7 @@ def synthesize_counted(
         # condition are written once: (bot1.depot or bot1.ready) => ...
         written: dict[str, tuple[m.Expr, list[m.Expr]]] = {}  # a condition's text -> it, its places
         for counted_event, source in pairs:
-            care = fp.reachable & fp.enabled[counted_event] & fp.required(counted_event)
+            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
             beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
             if (care & ~beyond) == enc.false:
                 continue

@@ -37,6 +37,7 @@ class Fixpoint:
     enc: Encoding
     relation: dict[Event, Relation]
     cases: dict[Event, tuple[Case, ...]]  # each event's requirements by where its automaton is
+    required: Unions  # where the requirements allow each event, among the states where it can happen
     enabled: dict[Event, BDD]
     initial: BDD
     marked: BDD
@@ -47,14 +48,6 @@ class Fixpoint:
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
     describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
 
-    def required(self, event: Event) -> BDD:
-        """Where the requirements allow ``event``, among the states where it can happen (the
-        union of its cases, made on request and kept: as one BDD it can be far larger than they)."""
-        key = ("required", event)
-        if key not in self.memo:
-            self.memo[key] = union(self.cases[event])
-        return self.memo[key]
-
     def describe(self, state: NetworkState) -> str:
         """``state`` in words, for explanations."""
         if self.describer is not None:
@@ -63,19 +56,20 @@ class Fixpoint:
 
     def allows(self, event: Event, state: NetworkState) -> bool:
         """Whether ``event`` can happen in ``state`` under the supervisor."""
-        if event.controllable:
-            return self.allowed.meets(event, self.state(state))
-        return bool((self.state(state) & self.where(event)) != self.enc.false)
+        return self.allows_in(event, self.state(state))
 
     def allowed_events(self, state: NetworkState) -> frozenset[Event]:
         """The events the supervisor lets happen in ``state`` (:meth:`allows` for each, the state
         encoded once)."""
-        here, false = self.state(state), self.enc.false
-        return frozenset(
-            e
-            for e in self.enc.network.events
-            if (self.allowed.meets(e, here) if e.controllable else (here & self.where(e)) != false)
-        )
+        here = self.state(state)
+        return frozenset(e for e in self.enc.network.events if self.allows_in(e, here))
+
+    def allows_in(self, event: Event, states: BDD) -> bool:
+        """Whether ``event`` can happen in one of ``states`` (a controllable one asked case by
+        case, without making the union of where it is allowed)."""
+        if event.controllable:
+            return self.allowed.meets(event, states)
+        return bool((states & self.where(event)) != self.enc.false)
 
     def where(self, event: Event) -> BDD:
         """The states where the supervisor lets ``event`` happen."""
@@ -125,6 +119,9 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     explore = options.explore
     events = edge_order(network, options.edges)  # the order the chained loops apply the events in
     uncontrollable = [relation[e] for e in events if not e.controllable]
+    # where the requirements allow each event, and its transitions there: a part, a relation per case
+    required = {e: [case.allowed for case in cases[e]] for e in events}
+    restricted = {e: [enc.fixed_target(relation[e].restrict(part)) for part in required[e]] for e in events}
     requirement_bad = enc.false
     for event in network.uncontrollable:
         for case in cases[event]:
@@ -149,10 +146,11 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
         bad = closed
         steps = []
         for event in events:
-            into_bad = ~enc.pre(relation[event], bad) if event in branching else None
-            for case in cases[event]:
-                step = enc.fixed_target(relation[event].restrict(case.allowed))
-                steps.append(step if into_bad is None else step.restrict(into_bad))
+            if event in branching:
+                outside = ~enc.pre(relation[event], bad)
+                steps += [r.restrict(outside) for r in restricted[event]]
+            else:
+                steps += restricted[event]
         # nonblocking: who reaches a marked state through good states (chained, each event to
         # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
         watch.phase("nonblocking", rounds)
@@ -172,25 +170,26 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     kept = ~bad
     reaching = (initial & bad) == enc.false
     allowed: dict[Event, list[BDD]] = {}
-    guards: dict[Event, list[BDD]] = {}
+    supervised: dict[Event, list[Relation]] = {}  # a controllable event's transitions the supervisor allows
     for e in network.controllable:
         into_bad = enc.pre(relation[e], bad)
         free = enabled[e] & kept & ~into_bad
-        allowed[e] = [free & case.allowed for case in cases[e]]
+        allowed[e] = [free & part for part in required[e]]
+        supervised[e] = restricted[e]
         if reaching:
             mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept
-            if any((mixed & case.allowed) != enc.false for case in cases[e]):
-                guards[e] = [case.allowed & ~into_bad for case in cases[e]]
-            else:
-                guards[e] = [case.allowed for case in cases[e]]
+            if any((mixed & part) != enc.false for part in required[e]):
+                supervised[e] = [r.restrict(~into_bad) for r in restricted[e]]
     reachable = enc.false
     watch.phase("reachable")
     if reaching:
         steps = []
         for e in events:  # in the events' order (a chained round's reach depends on it)
-            steps += [enc.fixed_target(relation[e].restrict(g)) for g in guards[e]] if e.controllable else [relation[e]]
+            steps += supervised[e] if e.controllable else [relation[e]]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
-    return Fixpoint(enc, relation, cases, enabled, initial, marked, requirement_bad, bad, Unions(allowed), reachable)
+    return Fixpoint(
+        enc, relation, cases, Unions(required), enabled, initial, marked, requirement_bad, bad, Unions(allowed), reachable
+    )
 
 
 def synthesize_monolithic(
@@ -219,9 +218,8 @@ def synthesize_monolithic(
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
-        care = enc.false
-        for case in fp.cases[event]:
-            care |= fp.reachable & fp.enabled[event] & case.allowed
+        where = fp.reachable & fp.enabled[event]
+        care = union([where & part for part in fp.required.parts[event]])  # without the union of the parts
         beyond = ~enc.pre(fp.relation[event], fp.bad)
         added: m.Expr | None = None
         if (care & ~beyond) != enc.false:

@@ -98,7 +98,7 @@ def reasons(fp: Any, event: Event) -> Reasons | None:
     """:func:`why`'s parts, the states not yet in words."""
     enc = fp.enc
     into_bad = enc.pre(fp.relation[event], fp.bad)
-    disabled = fp.reachable & fp.enabled[event] & fp.required(event) & into_bad
+    disabled = fp.reachable & fp.enabled[event] & fp.required[event] & into_bad
     if disabled == enc.false:
         return None
     found = shortest_path(fp, disabled)
