@@ -477,15 +477,35 @@ def test_singled_out_one_robot_the_others_are_still_counted():
     assert explicit_agrees(SINGLED_OUT.format(n=4), least=3)
 
 
+def required_reach(supervisor: Any) -> set[Any]:
+    """The states of an explicit supervisor's plant the requirements let the system reach."""
+    reached, stack = {supervisor.states[0]}, [supervisor.states[0]]
+    while stack:
+        state = stack.pop()
+        for event, target in supervisor.transitions[state]:
+            if target not in reached and (not event.controllable or supervisor.required_ok[(state, event)]):
+                reached.add(target)
+                stack.append(target)
+    return reached
+
+
 def explicit_agrees(text: str, least: int) -> bool:
-    """The counted supervisor of ``text`` allows what the explicit one does, state by state."""
+    """The counted supervisor of ``text`` allows what the explicit one does, state by state: in
+    every state of the plant when it searches all states, in those the requirements reach when
+    it searches those only (the default), holding in the others."""
     network = build_network(check_text(text).model)
     supervisor = synthesize_explicit(network).details["supervisor"]
-    fleet = synthesize_counted(network, least=least)
-    assert fleet.method == "symmetric", fleet.details.get("symmetry")
+    everywhere = synthesize_counted(network, SynthesisOptions(forward="never"), least=least)
+    forward = synthesize_counted(network, least=least)
+    assert forward.method == everywhere.method == "symmetric", forward.details.get("symmetry")
+    reach = required_reach(supervisor)
+    assert len(reach) < len(supervisor.states)  # some states only the plant reaches
     for state in supervisor.states:
         for event in network.events:
-            assert fleet.details["supervisor"].allows(event, state) == supervisor.allows(event, state), event.name
+            expected = supervisor.allows(event, state)
+            assert everywhere.details["supervisor"].allows(event, state) == expected, event.name
+            assert forward.details["supervisor"].allows(event, state) == (expected and state in reach), event.name
+        assert forward.details["supervisor"].controlled(state) == (state in reach and state not in supervisor.bad)
     return True
 
 

@@ -28,6 +28,7 @@ from robosc.synthesis.options import (
     EDGE_ORDERS,
     EXPLORATIONS,
     FLEETS,
+    FORWARDS,
     IMPROVEMENTS,
     ORDERS,
     SynthesisOptions,
@@ -256,6 +257,14 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
     "bits low in the order, chained otherwise. Speed and memory only.",
 )
 @click.option(
+    "--forward",
+    type=click.Choice(list(FORWARDS)),
+    default="auto",
+    show_default=True,
+    help="Whether the search for bad states is confined to the states the requirements let the system reach "
+    "(docs/synthesis-options.md); auto: on counted fleets. The supervisor is the same wherever it can get to.",
+)
+@click.option(
     "--fleet",
     type=click.Choice(list(FLEETS)),
     default="counted",
@@ -278,13 +287,14 @@ def synthesize(
     reorder: bool,
     edges: str,
     explore: str,
+    forward: str,
     fleet: str,
     stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
     model = load_robot(file, include, "synthesis")
-    options = SynthesisOptions(order, reorder, fleet, edges, explore)
+    options = SynthesisOptions(order, reorder, fleet, edges, explore, forward)
     comparison = None
     if explicit:
         from robosc.synthesis.explicit import TooManyStates

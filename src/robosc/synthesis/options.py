@@ -56,6 +56,16 @@ EXPLORATIONS = {
 }
 
 
+FORWARDS = {
+    "auto": "first on a counted fleet, never on other networks (the default: a counted warehouse of 50 robots "
+    "took 129 s without it and 19 s with it; fleets whose requirements allow nearly everything gain little)",
+    "first": "first find the states the requirements let the system reach from its initial state, then search "
+    "for bad states among those only (Eclipse ESCET's forward reachability; the supervisor is the same in every "
+    "state it can reach, and holds in the others)",
+    "never": "search for bad states among all the states the model can be in",
+}
+
+
 FLEETS = {
     "counted": "where three or more components are copies of each other (the instances of `component bot[N]`, "
     "or components copied by hand) and the requirements treat them alike, count how many are in each state "
@@ -73,13 +83,16 @@ class SynthesisOptions:
     one of :data:`FLEETS`. ``edges``: the order in which the fixed points apply the events, one
     of :data:`EDGE_ORDERS` (each event's image is added before the next is applied, so the
     order decides how far one round gets). ``explore``: how the fixed points (reachability,
-    controllability, nonblocking) apply the events, one of :data:`EXPLORATIONS`."""
+    controllability, nonblocking) apply the events, one of :data:`EXPLORATIONS`. ``forward``: whether
+    the search for bad states is confined to the states the requirements let the system reach,
+    one of :data:`FORWARDS`."""
 
     order: str = "interaction"
     reorder: bool = False
     fleet: str = "counted"
     edges: str = "model"
     explore: str = "auto"
+    forward: str = "auto"
 
     def __post_init__(self) -> None:
         problem = order_problem(self.order)
@@ -89,6 +102,8 @@ class SynthesisOptions:
             raise ValueError(f"unknown edge order '{self.edges}' (one of {', '.join(EDGE_ORDERS)})")
         if self.explore not in EXPLORATIONS:
             raise ValueError(f"unknown exploration '{self.explore}' (one of {', '.join(EXPLORATIONS)})")
+        if self.forward not in FORWARDS:
+            raise ValueError(f"unknown forward reachability '{self.forward}' (one of {', '.join(FORWARDS)})")
         if self.fleet not in FLEETS:
             raise ValueError(f"unknown fleet method '{self.fleet}' (one of {', '.join(FLEETS)})")
 

@@ -31,6 +31,7 @@ class Progress:
 PHASES = {
     "counting": "finding copies of a robot and counting them",
     "encoding": "encoding the automata and requirements as BDDs",
+    "forward": "the states the requirements let the system reach (where the search for bad states looks)",
     "bad states": "the states from which an uncontrollable event breaks a requirement",
     "nonblocking": "the states from which a marked state stays reachable",
     "reachable": "the states the supervised fleet reaches",

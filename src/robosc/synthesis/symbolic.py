@@ -21,7 +21,7 @@ from robosc.record import field, record
 from robosc.synthesis.cases import Case, Unions, requirement_cases, union
 from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.explain import explain
-from robosc.synthesis.fixedpoints import closure, edge_order, within
+from robosc.synthesis.fixedpoints import edge_order, within
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Watch
 from robosc.synthesis.readable import readable
@@ -42,7 +42,8 @@ class Fixpoint:
     initial: BDD
     marked: BDD
     requirement_bad: BDD
-    bad: BDD
+    bad: BDD  # among the considered states
+    considered: BDD  # the states synthesis decided on: every valid one, or those the requirements reach
     allowed: Unions  # controllable events: where the supervisor allows them (a part per case)
     reachable: BDD
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
@@ -73,12 +74,22 @@ class Fixpoint:
 
     def where(self, event: Event) -> BDD:
         """The states where the supervisor lets ``event`` happen."""
-        return self.allowed[event] if event.controllable else self.enabled[event] & ~self.bad
+        return self.allowed[event] if event.controllable else self.enabled[event] & self.good
+
+    @property
+    def good(self) -> BDD:
+        """The considered states that are not bad."""
+        return self.considered & ~self.bad
 
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` is inside the controlled behaviour: no requirement can be
-        forced to break from it and a marked state stays reachable."""
-        return bool((self.state(state) & self.bad) == self.enc.false)
+        forced to break from it and a marked state stays reachable (where synthesis looked only
+        at the states the requirements reach, those it did not look at are outside)."""
+        return self.controlled_in(self.state(state))
+
+    def controlled_in(self, states: BDD) -> bool:
+        """Whether ``states`` (one state, encoded) lies in the controlled behaviour."""
+        return bool((states & self.good) != self.enc.false)
 
     def state(self, state: NetworkState) -> BDD:
         network = self.enc.network
@@ -122,10 +133,22 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     # where the requirements allow each event, and its transitions there: a part, a relation per case
     required = {e: [case.allowed for case in cases[e]] for e in events}
     restricted = {e: [enc.fixed_target(relation[e].restrict(part)) for part in required[e]] for e in events}
+
+    def steps_of(event: Event) -> list[Relation]:  # where the requirements let it happen
+        return restricted[event] if event.controllable else [relation[event]]
+
+    # the states synthesis decides on: every valid one, or (forward) those the requirements let
+    # the system reach, forward-closed under every event they allow, so each fixed point below
+    # stays among them and finds there what it would find among all
+    considered = enc.valid()
+    forward = options.forward == "first" or (options.forward == "auto" and bool(network.totals))
+    if forward:
+        watch.phase("forward")
+        considered = within(enc, initial, [r for e in events for r in steps_of(e)], enc.post, None, explore)
     requirement_bad = enc.false
     for event in network.uncontrollable:
         for case in cases[event]:
-            requirement_bad |= enabled[event] & case.region & ~case.condition
+            requirement_bad |= enabled[event] & case.region & ~case.condition & considered
 
     # a controllable event with several outcomes is allowed only where none of them is bad, so
     # a state reaches a marked one through it only from there (one outcome good is not enough)
@@ -135,7 +158,7 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     while True:
         rounds += 1
         watch.phase("bad states", rounds)
-        closed = closure(enc, bad, uncontrollable, explore)
+        closed = within(enc, bad, uncontrollable, enc.pre, considered, explore)
         # from the second round on, bad holds every state the last round found unable to reach a
         # marked one; where no uncontrollable event leads into it from outside and no event
         # branches (so the steps are the same), this round's nonblocking would find the same good
@@ -154,8 +177,8 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
         # nonblocking: who reaches a marked state through good states (chained, each event to
         # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
         watch.phase("nonblocking", rounds)
-        good = within(enc, marked & ~bad, steps, enc.pre, ~bad, explore, each=True)
-        new_bad = enc.valid() & ~good
+        good = within(enc, marked & considered & ~bad, steps, enc.pre, considered & ~bad, explore, each=True)
+        new_bad = considered & ~good
         if new_bad == bad:
             break
         bad = new_bad
@@ -167,8 +190,8 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     # it can lead both to a bad and to a good state (nondeterministic), where the supervisor
     # disables it: there it also needs to lead to no bad state. (The allowed sets read every
     # counter of a fleet through the valid states.)
-    kept = ~bad
-    reaching = (initial & bad) == enc.false
+    kept = considered & ~bad
+    reaching = (initial & kept) != enc.false
     allowed: dict[Event, list[BDD]] = {}
     supervised: dict[Event, list[Relation]] = {}  # a controllable event's transitions the supervisor allows
     for e in network.controllable:
@@ -182,13 +205,26 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
                 supervised[e] = [r.restrict(~into_bad) for r in restricted[e]]
     reachable = enc.false
     watch.phase("reachable")
-    if reaching:
+    if reaching and forward and bad == enc.false:
+        reachable = considered  # nothing bad: the supervisor's reach is the requirements'
+    elif reaching:
         steps = []
         for e in events:  # in the events' order (a chained round's reach depends on it)
             steps += supervised[e] if e.controllable else [relation[e]]
         reachable = within(enc, initial, steps, enc.post, kept, explore)
     return Fixpoint(
-        enc, relation, cases, Unions(required), enabled, initial, marked, requirement_bad, bad, Unions(allowed), reachable
+        enc,
+        relation,
+        cases,
+        Unions(required),
+        enabled,
+        initial,
+        marked,
+        requirement_bad,
+        bad,
+        considered,
+        Unions(allowed),
+        reachable,
     )
 
 

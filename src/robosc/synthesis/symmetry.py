@@ -954,7 +954,7 @@ class CountedSupervisor:
         )
 
     def controlled(self, state: Any) -> bool:
-        return bool((self._state(state)[0] & self.fp.bad) == self.fp.enc.false)
+        return bool(self.fp.controlled_in(self._state(state)[0]))
 
 
 def lift(e: m.Expr, fleet: Counted, network: Network) -> m.Expr:

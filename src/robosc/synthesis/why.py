@@ -36,7 +36,7 @@ def _steps(fp: Any) -> list[tuple[Event, Relation]]:
     """Each event's transitions in the controlled system."""
     network = fp.enc.network
     return [
-        (e, fp.relation[e].restrict(fp.allowed[e]) if e.controllable else fp.relation[e].restrict(~fp.bad))
+        (e, fp.relation[e].restrict(fp.allowed[e]) if e.controllable else fp.relation[e].restrict(fp.good))
         for e in network.events
     ]
 
