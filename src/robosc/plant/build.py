@@ -21,11 +21,13 @@ give the variable any value of its domain.
 
 from __future__ import annotations
 
+from functools import partial
+
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant.domains import domain, initial_value
 from robosc.plant.expressions import NO_SPAN, all_of, any_of, negate, reads_data, variables_in
-from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, EventKind, Network, Requirement, Update
+from robosc.plant.network import Automaton, AutomatonKind, Edge, Event, EventKind, Later, Network, Requirement, Update
 from robosc.record import field, record
 
 R = m.ResultKind
@@ -174,10 +176,7 @@ class _Builder:
         allowed = condition if requirement.kind is m.RequirementKind.NEEDS else negate(condition)
         for c in requirement.communications:
             event = self.trigger[c]
-            if requirement.kind is m.RequirementKind.NEEDS:
-                text = f"requirement {c.name} needs {render(condition)}"
-            else:
-                text = f"requirement {render(condition)} disables {c.name}"
+            text = Later(partial(_told, requirement.kind, c.name, condition))
             self.requirements.append(Requirement(event, allowed, text, requirement))
 
     def cancel_requirements(self) -> None:
@@ -214,6 +213,13 @@ class _Builder:
             {v: initial_value(v) for v in self.variables},
             tuple(self.requirements),
         )
+
+
+def _told(kind: m.RequirementKind, name: str, condition: m.Expr) -> str:
+    """A requirement on communication ``name`` as the model writes it."""
+    if kind is m.RequirementKind.NEEDS:
+        return f"requirement {name} needs {render(condition)}"
+    return f"requirement {render(condition)} disables {name}"
 
 
 def build_network(model: m.Model) -> Network:

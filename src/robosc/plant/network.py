@@ -8,7 +8,7 @@ construction, or added by synthesis -- is an ordinary model expression.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from enum import Enum
 
 from robosc.language import model as m
@@ -81,14 +81,36 @@ class Automaton:
         return tuple(loc for loc in self.locations if loc.marked)
 
 
+class Later:
+    """A text written the first time it is asked for, then kept."""
+
+    __slots__ = ("make", "text")
+
+    def __init__(self, make: Callable[[], str]) -> None:
+        self.make = make
+        self.text: str | None = None
+
+    def __call__(self) -> str:
+        if self.text is None:
+            self.text = self.make()
+        return self.text
+
+
 @record(eq=False)
 class Requirement:
-    """A state-event exclusion: ``event`` may occur only where ``condition`` holds."""
+    """A state-event exclusion: ``event`` may occur only where ``condition`` holds. ``said``: how
+    to tell it, or how to write that when asked (a fleet's requirements name every robot, and
+    writing each out took longer than synthesis: 35 s for a warehouse of 200 robots)."""
 
     event: Event
     condition: m.Expr
-    description: str
+    said: str | Callable[[], str] = field(repr=False)
     origin: m.Requirement | None = None
+
+    @property
+    def description(self) -> str:
+        """The requirement as robosc tells it."""
+        return self.said if isinstance(self.said, str) else self.said()
 
 
 @record(eq=False)

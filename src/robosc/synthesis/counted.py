@@ -11,7 +11,7 @@ from typing import Any
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant.expressions import NO_SPAN, all_of, any_of
-from robosc.plant.network import Network
+from robosc.plant.network import Event, Network
 from robosc.synthesis.explain import explain
 from robosc.synthesis.fleet_why import describer
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
@@ -70,6 +70,18 @@ def synthesize_counted(
     translator = fleet.translator
     watch.phase("conditions")
     guards = []
+    # a counted event's added condition, the same for every robot whose event it counts (made
+    # once: for each of 500 robots it took minutes); None where it adds nothing
+    made: dict[Event, m.Expr | None] = {}
+
+    def added_to(counted_event: Event) -> m.Expr | None:
+        if counted_event not in made:
+            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
+            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
+            adds = (care & ~beyond) != enc.false
+            made[counted_event] = lift(readable(enc, beyond, care), fleet, network) if adds else None
+        return made[counted_event]
+
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
@@ -81,11 +93,9 @@ def synthesize_counted(
         # condition are written once: (bot1.depot or bot1.ready) => ...
         written: dict[str, tuple[m.Expr, list[m.Expr]]] = {}  # a condition's text -> it, its places
         for counted_event, source in pairs:
-            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
-            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
-            if (care & ~beyond) == enc.false:
+            added = added_to(counted_event)
+            if added is None:
                 continue
-            added = lift(readable(enc, beyond, care), fleet, network)
             places = written.setdefault(render(added), (added, []))[1]
             if source is not None and owner is not None:
                 group, agent = owner

@@ -132,21 +132,26 @@ class Encoding:
 
     def sums_to(self, counters: Sequence[m.Variable], total: int) -> BDD:
         """The states where ``counters`` add up to ``total`` (a counted fleet's agents are all
-        somewhere): summed counter by counter, partial sums above ``total`` dropped. The counters
-        are taken from the bottom of the variable order up, so that each step puts a counter's
-        few nodes above BDDs already built instead of going through them (ring of 24 robots:
-        14 s before)."""
+        somewhere)."""
+        return self.sums(counters, total).get(total, self.false)
+
+    def sums(self, counters: Sequence[m.Variable], at_most: int) -> dict[int, BDD]:
+        """Each sum of ``counters`` up to ``at_most``, and where they add up to it: summed counter
+        by counter, partial sums above ``at_most`` dropped. The counters are taken from the
+        bottom of the variable order up, so that each step puts a counter's few nodes above
+        BDDs already built instead of going through them (ring of 24 robots: 14 s before)."""
         partial = {0: self.true}
         deepest_first = sorted(counters, key=lambda c: -self.bdd.level_of_var(self.field(c).bits[0]))
         for counter in deepest_first:
             field = self.field(counter)
+            codes = [self.code(field, index) for index in range(len(field.values))]
             step: dict[int, BDD] = {}
             for so_far, where in partial.items():
-                for index, value in enumerate(field.values):
-                    if so_far + value <= total:
-                        step[so_far + value] = step.get(so_far + value, self.false) | (where & self.code(field, index))
+                for value, code in zip(field.values, codes, strict=True):
+                    if so_far + value <= at_most:
+                        step[so_far + value] = step.get(so_far + value, self.false) | (where & code)
             partial = step
-        return partial.get(total, self.false)
+        return partial
 
     # -- fields and codes -----------------------------------------------------------
     def field(self, item: Item) -> Field:
@@ -154,12 +159,7 @@ class Encoding:
 
     def code(self, field: Field, index: int, primed: bool = False) -> BDD:
         """The BDD of ``field`` holding its ``index``-th value."""
-        names = field.primed if primed else field.bits
-        result = self.true
-        for k, bit in enumerate(names):
-            var = self.bdd.var(bit)
-            result &= var if (index >> k) & 1 else ~var
-        return result
+        return self.bdd.cube(self.assignment(field, index, primed))
 
     def assignment(self, field: Field, index: int, primed: bool = False) -> dict[str, bool]:
         names = field.primed if primed else field.bits

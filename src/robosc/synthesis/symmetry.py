@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import itertools
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from robosc.language import model as m
@@ -441,14 +441,16 @@ class Translator:
             return ("mine", id(mine[ref]), steps)
         return ("shared", id(ref), steps)
 
-    def about(self, e: m.Expr, me: Agent | None, what: str, span: Any = None) -> m.Expr:
-        """:meth:`template`, a failure said of ``what`` (a requirement, a guard) and where it is."""
+    def about(self, e: m.Expr, me: Agent | None, what: str | Callable[[], str], span: Any = None) -> m.Expr:
+        """:meth:`template`, a failure said of ``what`` (a requirement, a guard; or how to write
+        it) and where it is."""
         try:
             return self.template(e, me)
         except NotSymmetric as reason:
             place = span if span is not None else e.span
             at = f" ({place.path}:{place.line}:{place.column})" if place.line else ""
-            raise NotSymmetric(f"{what}{at}: {reason}") from None
+            said = what if isinstance(what, str) else what()
+            raise NotSymmetric(f"{said}{at}: {reason}") from None
 
     def template(self, e: m.Expr, me: Agent | None) -> m.Expr:
         mine = id(me) if me is not None else None
@@ -738,7 +740,7 @@ def _counted(network: Network, found: list[Group]) -> Counted:
         )
     events = [e for e in network.events if e not in agent_events]
     requirements = [
-        Requirement(r.event, translator.about(r.condition, None, r.description, _span(r)), r.description, r.origin)
+        Requirement(r.event, translator.about(r.condition, None, r.said, _span(r)), r.said, r.origin)
         for r in network.requirements
         if r.event not in agent_events
     ]
@@ -781,7 +783,7 @@ def _counted(network: Network, found: list[Group]) -> Counted:
             moves[event] = (group, tuple(outcomes))
             for requirement in network.requirements_on(original):
                 condition = translator.instantiate(templates[id(requirement)], group, source)
-                requirements.append(Requirement(event, condition, requirement.description, requirement.origin))
+                requirements.append(Requirement(event, condition, requirement.said, requirement.origin))
         automata.append(
             Automaton(
                 f"#{group.name}",
@@ -833,17 +835,14 @@ def _check_requirements(network: Network, translator: Translator, group: Group) 
     the representative's templates, by requirement (``id``)."""
     templates: dict[int, m.Expr] = {}
     by_texts: dict[tuple[tuple[str, str], ...], list[Agent]] = {}
-    described: dict[tuple[str, str], str] = {}  # (event, template) -> the requirement's text
+    described: dict[tuple[str, str], Requirement] = {}  # (event, template) -> the requirement
     for agent in group.agents:
         mapping = group.to_rep[id(agent)]
-        mine = {
-            id(r): (r, translator.about(r.condition, agent, r.description, _span(r)))
-            for e in agent.events
-            for r in network.requirements_on(e)
-        }
+        requirements = [r for e in agent.events for r in network.requirements_on(e)]
+        mine = {id(r): (r, translator.about(r.condition, agent, r.said, _span(r))) for r in requirements}
         texts = tuple(sorted((mapping[r.event].name, render(template)) for r, template in mine.values()))
         for r, template in mine.values():
-            described.setdefault((mapping[r.event].name, render(template)), r.description)
+            described.setdefault((mapping[r.event].name, render(template)), r)
         if not by_texts:
             templates = {key: template for key, (_, template) in mine.items()}
         by_texts.setdefault(texts, []).append(agent)
@@ -854,7 +853,7 @@ def _check_requirements(network: Network, translator: Translator, group: Group) 
         lacking = group.rep.component.name if differs[0] in other else agent.component.name
         raise Differ(
             f"the requirements of '{agent.component.name}' differ from those of '{group.rep.component.name}' "
-            f"({described[differs[0]]} has no counterpart for '{lacking}')",
+            f"({described[differs[0]].description} has no counterpart for '{lacking}')",
             group,
             list(by_texts.values()),
         )
