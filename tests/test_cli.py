@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -246,3 +247,23 @@ def test_explicit_synthesis_of_a_model_too_large_for_it_says_so(monkeypatch: pyt
     done = CliRunner().invoke(cli, ["synthesize", "--explicit", str(EXAMPLES / "warehouse.rscd")])
     assert done.exit_code == 2, done.output
     assert "explicit-state synthesis lists every state, and this model has more than 1000 states" in done.output
+
+
+def test_looking_for_bad_states_only_where_the_requirements_reach_gives_the_same_conditions() -> None:
+    """`--forward first` (the default on a counted fleet) and `--forward never` print the same
+    conditions for the warehouse; the search differs (its preimages)."""
+    from click.testing import CliRunner
+
+    from robosc.cli.main import cli
+
+    said = {}
+    for forward in ("first", "never", "auto"):
+        done = CliRunner().invoke(cli, ["synthesize", "--stats", "--forward", forward, str(EXAMPLES / "warehouse.rscd")])
+        assert done.exit_code == 0, done.output
+        lines = done.output.splitlines()
+        conditions = [line for line in lines if "reachable states" not in line and not line.startswith("effort:")]
+        preimages = re.search(r"([\d,]+) preimages", done.output)
+        assert preimages is not None, done.output
+        said[forward] = (conditions, preimages.group(1))
+    assert said["first"][0] == said["never"][0] == said["auto"][0]
+    assert said["first"][1] != said["never"][1] and said["auto"] == said["first"]

@@ -516,7 +516,9 @@ def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool
         default = synthesize_model(model)
         edges = "reverse" if reorder else "sorted"  # the edge orders too, each with half the cases
         explore = "chained" if "->" in order else "saturation"  # and both explorations (the default: auto)
-        tuned = synthesize_model(model, options=SynthesisOptions(order, reorder, edges=edges, explore=explore))
+        forward = "first" if reorder else "never"  # bad states among those the requirements reach, or all
+        options = SynthesisOptions(order, reorder, edges=edges, explore=explore, forward=forward)
+        tuned = synthesize_model(model, options=options)
         assert tuned.reachable_states == default.reachable_states
         assert [g.added is None for g in tuned.guards] == [g.added is None for g in default.guards]
         # the same events allowed in the same states (an added condition may be written
@@ -537,6 +539,8 @@ def test_an_unknown_order_is_refused() -> None:
         SynthesisOptions("random")
     with pytest.raises(ValueError, match="unknown order improvement 'sifting'"):
         SynthesisOptions("model->sifting")
+    with pytest.raises(ValueError, match="unknown forward reachability 'always'"):
+        SynthesisOptions(forward="always")
     with pytest.raises(ValueError, match="unknown exploration 'bfs'"):
         SynthesisOptions(explore="bfs")
 
