@@ -849,3 +849,21 @@ def test_robots_whose_requirements_are_the_first_robots_with_the_two_swapped_are
     with pytest.raises(symmetry.NotSymmetric):
         counted(build_network(check_text(changed).model))
     assert "R2" in translated
+
+
+def test_copies_that_cannot_be_counted_look_for_bad_states_where_the_requirements_reach() -> None:
+    """Robots with homes of their own are copies synthesized monolithically; by default synthesis
+    looks for bad states only among the states the requirements reach, as on a counted fleet (a
+    ring of 10 such robots: 61 s before, 18 s), and allows the same events where the fleet goes.
+    Asked for the monolithic method, it looks everywhere (the reference)."""
+    network = build_network(check_text(families.ring_homes(3)).model)
+    fleet = synthesize_counted(network)
+    first = synthesize_monolithic(network, SynthesisOptions(forward="first"))
+    everywhere = synthesize_monolithic(network)
+    assert "monolithic" in fleet.details["symmetry"]
+    assert fleet.details["effort"]["preimages"] == first.details["effort"]["preimages"]
+    assert first.details["effort"]["preimages"] < everywhere.details["effort"]["preimages"]
+    assert fleet.reachable_states == everywhere.reachable_states
+    for state in synthesize_explicit(network).details["supervisor"].controlled_states():
+        for event in network.events:
+            assert fleet.allows(event, state) == everywhere.allows(event, state), event.name

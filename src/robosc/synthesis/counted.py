@@ -35,7 +35,7 @@ def synthesize_counted(
     try:
         fleet = counted(network, least)
     except NotSymmetric as reason:
-        result = synthesize_monolithic(network, options, watch)
+        result = synthesize_monolithic(network, options, watch, fleet=bool(reason.robots))
         fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {reason}")
         if reason.robots:  # a fleet: say why it was not counted
             fallback["fleet_note"] = (

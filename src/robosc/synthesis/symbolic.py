@@ -98,7 +98,11 @@ class Fixpoint:
         return self.enc.state(locations, values)
 
 
-def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None) -> Fixpoint:
+def fixpoint(
+    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None, fleet: bool = False
+) -> Fixpoint:
+    """The fixed points of synthesis over ``network``; ``fleet``: it is a fleet of copies (for
+    :data:`robosc.synthesis.options.FORWARDS`' auto, as a counted network is)."""
     watch = watch if watch is not None else Watch.quiet()
     watch.phase("encoding")
     enc = Encoding(network, options)
@@ -141,7 +145,7 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
     # the system reach, forward-closed under every event they allow, so each fixed point below
     # stays among them and finds there what it would find among all
     considered = enc.valid()
-    forward = options.forward == "first" or (options.forward == "auto" and bool(network.totals))
+    forward = options.forward == "first" or (options.forward == "auto" and (fleet or bool(network.totals)))
     if forward:
         watch.phase("forward")
         considered = within(enc, initial, [r for e in events for r in steps_of(e)], enc.post, None, explore)
@@ -229,14 +233,15 @@ def fixpoint(network: Network, options: SynthesisOptions = DEFAULT, watch: Watch
 
 
 def synthesize_monolithic(
-    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None
+    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None, fleet: bool = False
 ) -> SynthesisResult:
     """The maximally permissive controllable, nonblocking supervisor of ``network``, over one
     BDD of the whole network's state (the reference method; ``options``: how to compute it,
-    never what; ``watch``: told how far it is)."""
+    never what; ``watch``: told how far it is; ``fleet``: a fleet of copies that could not be
+    counted)."""
     start = time.perf_counter()
     watch = watch if watch is not None else Watch.quiet()
-    fp = fixpoint(network, options, watch)
+    fp = fixpoint(network, options, watch, fleet)
     enc = fp.enc
     if (fp.initial & fp.bad) != enc.false:
         explanation = explain(fp)
