@@ -505,3 +505,31 @@ robot K {
     assert sup.deliver("o", Data({"class": 2.0, "None": 0.0})) is True
     assert sup.snapshot()["variables"]["C.f"] == "far"
     assert m.BasicKind.DOUBLE  # the model module is what the planner reads
+
+
+def test_a_long_condition_that_reads_received_data_stays_where_it_stands() -> None:
+    """A long condition over the state is written once as a method (``self._part0()``); one that
+    reads the received data, in every part of a chain, stays in the handler, where the data
+    is (whether a part reads data is found once per part: asking again for each part of a long
+    chain made the module of 500 robots take minutes)."""
+    from robosc.language import model as lm
+    from robosc.plant.expressions import NO_SPAN
+    from robosc.runtime.pyexpr import SHARED_FROM, Names, python
+
+    def chain(parts: list[lm.Expr]) -> lm.Expr:
+        result = parts[0]
+        for part in parts[1:]:
+            result = lm.Binary("or", result, part, lm.BOOLEAN, NO_SPAN)
+        return result
+
+    ints = [lm.Literal(i, lm.INTEGER, NO_SPAN) for i in range(40)]
+    flags = [lm.Binary("=", ints[i], ints[i + 1], lm.BOOLEAN, NO_SPAN) for i in range(39)]
+    data = lm.Binary(">", lm.DataRef((), lm.INTEGER, NO_SPAN), ints[3], lm.BOOLEAN, NO_SPAN)
+    over_state = chain(flags)
+    with_data = chain([data, *flags])  # read by every part of the chain
+    names = Names({}, {}, shared={})
+    assert len(python(over_state, Names({}, {}))) >= SHARED_FROM
+    assert "self._part" in python(over_state, names)
+    code = python(with_data, names)
+    assert "value" in code  # the data read in place
+    assert names.shared and not any("value" in body for body in names.shared)  # no method reads it
