@@ -41,5 +41,27 @@ def variables_in(e: m.Expr) -> set[m.Variable]:
     return {n.variable for n in m.walk(e) if isinstance(n, m.VariableRef)}
 
 
-def reads_data(e: m.Expr) -> bool:
-    return any(isinstance(n, m.DataRef) for n in m.walk(e))
+def reads_data(e: m.Expr, known: dict[int, tuple[m.Expr, bool]] | None = None) -> bool:
+    """Whether ``e`` reads received data. ``known``: the answers found so far, by id (the
+    expression kept, so that its id stays its own), used and added to: each part is looked at
+    once, however often it is asked about (the generated module asks at every level of a long
+    condition, and walking each part again made writing a warehouse of 500 robots' take minutes)."""
+    known = {} if known is None else known
+    stack: list[tuple[m.Expr, bool]] = [(e, False)]
+    while stack:
+        node, seen = stack.pop()
+        if id(node) in known:
+            continue
+        parts: tuple[m.Expr, ...] = ()
+        if isinstance(node, m.Binary):
+            parts = (node.left, node.right)
+        elif isinstance(node, m.Unary):
+            parts = (node.operand,)
+        elif isinstance(node, m.Count):
+            parts = node.terms
+        if parts and not seen:
+            stack.append((node, True))
+            stack += [(part, False) for part in parts]
+            continue
+        known[id(node)] = (node, isinstance(node, m.DataRef) or any(known[id(part)][1] for part in parts))
+    return known[id(e)][1]

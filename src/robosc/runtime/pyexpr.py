@@ -16,6 +16,7 @@ import re
 from collections.abc import Mapping
 
 from robosc.language import model as m
+from robosc.plant.expressions import reads_data
 from robosc.record import field, record
 
 _OPERATORS = {
@@ -91,9 +92,7 @@ class Names:
     # a field of one robot of a group -> the fields of the same role of every robot of the
     # group, in order (the fields a tally counts)
     groups: Mapping[str, tuple[str, ...]] | None = field(default=None, compare=False, repr=False)
-    # whether each expression written so far reads received data (by id, the expression kept so
-    # that its id stays its own): a long condition's parts are asked in turn, and walking each
-    # part again made writing a warehouse of 500 robots' module take minutes
+    # whether each expression written so far reads received data (see reads_data)
     reading: dict[int, tuple[m.Expr, bool]] = field(default_factory=dict, compare=False, repr=False)
 
 
@@ -129,7 +128,7 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
     shared = names.shared
     if shared is None or owner != "self" or len(code) < SHARED_FROM or not isinstance(expr, _SHAREABLE):
         return code
-    if _reads_data(expr, names.reading):
+    if reads_data(expr, names.reading):
         return code  # received data: a handler's local
     name = shared.get(code)
     if name is None:
@@ -138,29 +137,6 @@ def python(expr: m.Expr, names: Names, owner: str = "self") -> str:
 
 
 _SHAREABLE = (m.Count, m.Binary, m.Unary)
-
-
-def _reads_data(expr: m.Expr, known: dict[int, tuple[m.Expr, bool]]) -> bool:
-    """Whether ``expr`` reads received data; ``known``: the answers found so far, kept and added
-    to (each part is looked at once, however often it is asked about)."""
-    stack: list[tuple[m.Expr, bool]] = [(expr, False)]
-    while stack:
-        node, seen = stack.pop()
-        if id(node) in known:
-            continue
-        parts: tuple[m.Expr, ...] = ()
-        if isinstance(node, m.Binary):
-            parts = (node.left, node.right)
-        elif isinstance(node, m.Unary):
-            parts = (node.operand,)
-        elif isinstance(node, m.Count):
-            parts = node.terms
-        if parts and not seen:
-            stack.append((node, True))
-            stack += [(part, False) for part in parts]
-            continue
-        known[id(node)] = (node, isinstance(node, m.DataRef) or any(known[id(part)][1] for part in parts))
-    return known[id(expr)][1]
 
 
 def _python(expr: m.Expr, names: Names, owner: str) -> str:

@@ -16,7 +16,6 @@ from robosc.synthesis.explain import explain
 from robosc.synthesis.fleet_why import describer
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Watch
-from robosc.synthesis.readable import readable
 from robosc.synthesis.result import EventGuard, SynthesisResult
 from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
 from robosc.synthesis.symmetry import MIN_AGENTS, CountedSupervisor, NotSymmetric, counted, lift, rename_back
@@ -76,10 +75,8 @@ def synthesize_counted(
 
     def added_to(counted_event: Event) -> m.Expr | None:
         if counted_event not in made:
-            care = fp.reachable & fp.enabled[counted_event] & fp.required[counted_event]
-            beyond = ~enc.pre(fp.relation[counted_event], fp.bad)
-            adds = (care & ~beyond) != enc.false
-            made[counted_event] = lift(readable(enc, beyond, care), fleet, network) if adds else None
+            added = fp.added(counted_event)
+            made[counted_event] = lift(added, fleet, network) if added is not None else None
         return made[counted_event]
 
     for event in network.controllable:

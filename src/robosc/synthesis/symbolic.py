@@ -81,6 +81,15 @@ class Fixpoint:
         """The considered states that are not bad."""
         return self.considered & ~self.bad
 
+    def added(self, event: Event) -> m.Expr | None:
+        """The condition synthesis adds to ``event`` beyond its requirements, written over the
+        states where the controlled system can do it (None where it adds none)."""
+        enc = self.enc
+        where = self.reachable & self.enabled[event]
+        care = union([where & part for part in self.required.parts[event]])  # without the union of the parts
+        beyond = ~enc.pre(self.relation[event], self.bad)
+        return readable(enc, beyond, care) if (care & ~beyond) != enc.false else None
+
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` is inside the controlled behaviour: no requirement can be
         forced to break from it and a marked state stays reachable (where synthesis looked only
@@ -204,7 +213,7 @@ def fixpoint(
         allowed[e] = [free & part for part in required[e]]
         supervised[e] = restricted[e]
         if reaching:
-            mixed = into_bad & enc.pre(relation[e], kept & enc.valid()) & kept
+            mixed = into_bad & enc.pre(relation[e], kept) & kept  # (kept: valid states only)
             if any((mixed & part) != enc.false for part in required[e]):
                 supervised[e] = [r.restrict(~into_bad) for r in restricted[e]]
     reachable = enc.false
@@ -259,13 +268,7 @@ def synthesize_monolithic(
     for event in network.controllable:
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
-        where = fp.reachable & fp.enabled[event]
-        care = union([where & part for part in fp.required.parts[event]])  # without the union of the parts
-        beyond = ~enc.pre(fp.relation[event], fp.bad)
-        added: m.Expr | None = None
-        if (care & ~beyond) != enc.false:
-            added = readable(enc, beyond, care)
-        guards.append(EventGuard(event, required, added))
+        guards.append(EventGuard(event, required, fp.added(event)))
     details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd), "effort": enc.effort()}
     return SynthesisResult(
         network,
