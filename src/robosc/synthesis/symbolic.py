@@ -115,7 +115,7 @@ def fixpoint(
     watch = watch if watch is not None else Watch.quiet()
     watch.phase("encoding")
     enc = Encoding(network, options)
-    watch.nodes = lambda: len(enc.bdd)
+    watch.nodes = enc.live_nodes
     enc.watch = watch
     relation = {}
     for event in network.events:
@@ -269,7 +269,8 @@ def synthesize_monolithic(
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         guards.append(EventGuard(event, required, fp.added(event)))
-    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": len(enc.bdd), "effort": enc.effort()}
+    effort = enc.effort()
+    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": effort["nodes"], "effort": effort}
     return SynthesisResult(
         network,
         "symbolic",
