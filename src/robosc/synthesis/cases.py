@@ -43,15 +43,19 @@ class Unions(Mapping[Event, BDD]):
     """Each event's set as the union of its parts (one per case), made on first use and kept: a
     part is small where the union can be as large as the requirements it holds (the ring of 8
     robots copied by hand, where nothing is bad: 5.7 million nodes for where each event is
-    allowed). Where the requirements allow each event, and where the supervisor does."""
+    allowed). Where the requirements allow each event, and where the supervisor does.
+    ``within``: a set each event's parts are intersected with, also on first use only (where the
+    supervisor allows it: a ring with homes of 14 robots spent 3 s of 46 intersecting them)."""
 
-    def __init__(self, parts: dict[Event, list[BDD]]) -> None:
+    def __init__(self, parts: dict[Event, list[BDD]], within: dict[Event, BDD] | None = None) -> None:
         self.parts = parts
+        self.within = within if within is not None else {}
         self.made: dict[Event, BDD] = {}
 
     def __getitem__(self, event: Event) -> BDD:
         if event not in self.made:
-            self.made[event] = union(self.parts[event])
+            made = union(self.parts[event])
+            self.made[event] = made & self.within[event] if event in self.within else made
         return self.made[event]
 
     def __iter__(self) -> Iterator[Event]:
@@ -62,6 +66,8 @@ class Unions(Mapping[Event, BDD]):
 
     def meets(self, event: Event, states: BDD) -> bool:
         """Whether ``states`` and ``event``'s set share a state (without making the union)."""
+        if event in self.within:
+            states = states & self.within[event]
         return any((states & part) != states.bdd.false for part in self.parts[event])
 
 

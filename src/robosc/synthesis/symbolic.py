@@ -205,12 +205,11 @@ def fixpoint(
     # counter of a fleet through the valid states.)
     kept = considered & ~bad
     reaching = (initial & kept) != enc.false
-    allowed: dict[Event, list[BDD]] = {}
+    free: dict[Event, BDD] = {}  # where the supervisor allows each, its requirements apart
     supervised: dict[Event, list[Relation]] = {}  # a controllable event's transitions the supervisor allows
     for e in network.controllable:
         into_bad = enc.pre(relation[e], bad)
-        free = enabled[e] & kept & ~into_bad
-        allowed[e] = [free & part for part in required[e]]
+        free[e] = enabled[e] & kept & ~into_bad
         supervised[e] = restricted[e]
         if reaching:
             mixed = into_bad & enc.pre(relation[e], kept) & kept  # (kept: valid states only)
@@ -236,7 +235,7 @@ def fixpoint(
         requirement_bad,
         bad,
         considered,
-        Unions(allowed),
+        Unions({e: required[e] for e in network.controllable}, free),
         reachable,
     )
 
