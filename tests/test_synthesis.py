@@ -695,3 +695,29 @@ def test_a_requirement_is_split_by_where_its_robot_is_and_means_the_same(monkeyp
     split = supervisor()
     monkeypatch.setattr(cases, "splitter", lambda *_: None)
     assert supervisor() == split
+
+
+@pytest.mark.parametrize("family", ["ring_homes", "lift", "warehouse", "crossing"])
+def test_a_requirement_decided_at_each_location_means_the_requirement_there(family: str) -> None:
+    """Where an automaton is in a location, its location references are decided and only the parts
+    that name one are rebuilt (`at_location`): no reference to its locations is left, and the
+    states are the whole requirement's there, for every requirement, automaton and location."""
+    import families
+    from robosc.language import model as m
+    from robosc.synthesis.cases import at_location
+    from robosc.synthesis.encoding import Encoding
+
+    network = build_network(load(getattr(families, family)(3)))
+    enc = Encoding(network)
+    checked = 0
+    for requirement in network.requirements:
+        whole = enc.boolean(requirement.condition)
+        for automaton in network.automata:
+            for location in automaton.locations:
+                decided = at_location(requirement.condition, automaton, location)
+                here = enc.at(location) & enc.valid()
+                assert enc.boolean(decided) & here == whole & here, (requirement.description, location.name)
+                own = {id(s) for s in automaton.locations}
+                assert not any(isinstance(n, m.StateRef) and id(n.state) in own for n in m.walk(decided))
+                checked += decided is not requirement.condition
+    assert checked > 0

@@ -23,12 +23,20 @@ def fold(e: m.Expr) -> m.Expr:
     """``e`` with the boolean constants that deciding ``q != r`` left folded away."""
     if isinstance(e, m.Unary) and e.op == "!":
         operand = fold(e.operand)
-        value = boolean_constant(operand)
-        if value is not None:
-            return literal(not value, e.span)
-        return e if operand is e.operand else m.Unary("!", operand, e.type, e.span)
+        return folded(e if operand is e.operand else m.Unary("!", operand, e.type, e.span))
     if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
         left, right = fold(e.left), fold(e.right)
+        return folded(e if left is e.left and right is e.right else m.Binary(e.op, left, right, e.type, e.span))
+    return e
+
+
+def folded(e: m.Expr) -> m.Expr:
+    """:func:`fold` of ``e`` whose operands are folded already (only ``e`` itself is looked at)."""
+    if isinstance(e, m.Unary) and e.op == "!":
+        value = boolean_constant(e.operand)
+        return e if value is None else literal(not value, e.span)
+    if isinstance(e, m.Binary) and e.op in ("and", "or", "=>"):
+        left, right = e.left, e.right
         a, b = boolean_constant(left), boolean_constant(right)
         if e.op == "and":
             if a is False or b is False:
@@ -50,10 +58,7 @@ def fold(e: m.Expr) -> m.Expr:
             if a is True:
                 return right
             if b is False:
-                return fold(m.Unary("!", left, m.BOOLEAN, e.span))
-        if left is e.left and right is e.right:
-            return e
-        return m.Binary(e.op, left, right, e.type, e.span)
+                return folded(m.Unary("!", left, m.BOOLEAN, e.span))
     return e
 
 
