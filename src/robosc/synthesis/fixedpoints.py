@@ -49,11 +49,14 @@ def chained(
     these groups in the opposite order to the last, so that a robot that makes room for another
     is met before it in one round or the next, whichever way the search goes. The ring with
     homes of its own of 14 robots (monolithic, every requirement naming every robot): 250 s
-    before, 38 s after (33 rounds of every relation over the whole set before, 8 after)."""
-    groups: dict[tuple[str, ...], list[int]] = {}
-    for index, relation in enumerate(relations):
-        groups.setdefault(tuple(relation.bits), []).append(index)
+    before, 38 s after (33 rounds of every relation over the whole set before, 8 after). Where
+    no two relations change the same bits, :func:`plainly_chained`."""
+    groups: dict[tuple[str, ...] | int, list[int]] = {}
+    for index, relation in enumerate(relations):  # (one that changes nothing is a group of its own)
+        groups.setdefault(tuple(relation.bits) if relation.bits else index, []).append(index)
     order = list(groups.values())
+    if all(len(group) == 1 for group in order):
+        return plainly_chained(start, relations, step, inside, each)
     false = enc.bdd.false
     done = [false] * len(relations)  # the set each relation was last applied to
     result = start
@@ -86,6 +89,28 @@ def chained(
                     apply(index)
                 if result == start_of_group:
                     break
+        if result == before:
+            return result
+
+
+def plainly_chained(start: BDD, relations: list[Relation], step: Step, inside: BDD | None, each: bool = False) -> BDD:
+    """:func:`within`'s set, every relation applied to the whole set once per round, its image
+    added before the next is applied (``each``: each to its own fixed point). Where no two
+    relations change the same bits (a counted fleet's moves, each between two counters of its
+    own) this is faster than :func:`chained`'s frontiers and groups: the ring of 16 robots with
+    instances, chained, took 22.2 s with those and 11.8 s without."""
+
+    def grown(relation: Relation, states: BDD) -> BDD:
+        found = step(relation, states)
+        return states | (found if inside is None else found & inside)
+
+    result = start
+    while True:
+        before = result
+        for relation in relations:
+            result = grown(relation, result)
+            while each and not relation.once and (more := grown(relation, result)) != result:
+                result = more
         if result == before:
             return result
 
