@@ -89,7 +89,7 @@ def splitter(network: Network, event: Event, condition: m.Expr) -> Automaton | N
 
 def at_location(condition: m.Expr, automaton: Automaton, location: m.State, naming: set[int] | None = None) -> m.Expr:
     """``condition`` where ``automaton`` is in ``location``, its location references decided and
-    folded away. ``naming``: :func:`naming` of the two, where it is known already (only the
+    folded away. ``naming``: :func:`locations_named` of the two, where it is known already (only the
     parts that name a location are rebuilt: a ring with homes of 14 robots, every robot's
     requirement a case per zone naming every other robot, spent 8 s of 46 rebuilding all)."""
     own = {id(s) for s in automaton.locations}

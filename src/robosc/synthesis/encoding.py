@@ -259,9 +259,11 @@ class Encoding:
         leaving = self.bdd.exist([b for b in source.support if b not in relation.bits], source)
         origin = None
         if self.bdd.count(leaving, nvars=len(relation.bits)) == 1:
-            values = self.bdd.pick(leaving, care_vars=relation.bits)
-            if self.bdd.cube(values) & beside == source:
-                origin = {bit: bool(values[bit]) for bit in relation.bits}
+            leaves = self.bdd.pick(leaving, care_vars=relation.bits)
+            if self.bdd.cube(leaves) & beside == source:
+                origin = {bit: bool(leaves[bit]) for bit in relation.bits}
+        if origin is None:
+            beside = None  # (only an image from one origin uses it)
         return Relation(
             relation.bdd, relation.bits, relation.primed, relation.guard, target, source, once, origin, beside
         )

@@ -268,8 +268,7 @@ def synthesize_monolithic(
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         guards.append(EventGuard(event, required, fp.added(event)))
-    effort = enc.effort()
-    details: dict[str, Any] = {"fixpoint": fp, "bdd_nodes": effort["nodes"], "effort": effort}
+    details: dict[str, Any] = {"fixpoint": fp, "effort": enc.effort()}
     return SynthesisResult(
         network,
         "symbolic",
