@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 import time
+import types
 from pathlib import Path
 
 import pytest
@@ -18,6 +19,7 @@ import pytest
 from families import ring
 from robosc.api import load_model
 from robosc.plant import build_network
+from robosc.synthesis import progress
 from robosc.synthesis.progress import PHASES, Progress, Watch
 from robosc.synthesis.symbolic import synthesize_monolithic
 
@@ -54,8 +56,12 @@ def test_a_watch_says_nothing_before_its_interval_has_passed() -> None:
     assert seen == []
 
 
-def test_a_watch_counts_the_nodes_in_use_once_a_phase_and_every_few_seconds_not_at_each_report() -> None:
+def test_a_watch_counts_the_nodes_in_use_once_a_phase_and_every_few_seconds_not_at_each_report(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     # counting walks CUDD's tables: read at every report, it made a ring of 16 robots 4.5x slower
+    now = [0.0]  # the watch's clock, moved by hand (the test does not depend on how fast it runs)
+    monkeypatch.setattr(progress, "time", types.SimpleNamespace(monotonic=lambda: now[0]))
     counts: list[int] = []
 
     def count() -> int:
@@ -67,11 +73,15 @@ def test_a_watch_counts_the_nodes_in_use_once_a_phase_and_every_few_seconds_not_
     watch.nodes = count
     for _ in range(500):
         watch.step()
+    now[0] = 0.5
     watch.phase("nonblocking", 1)
     for _ in range(500):
         watch.step()
-    assert len(seen) == 1001 and counts == [100, 101]
-    assert {p.live_nodes for p in seen[:500]} == {100} and {p.live_nodes for p in seen[500:]} == {101}
+    now[0] = 0.5 + progress.NODES_EVERY
+    watch.step()
+    assert len(seen) == 1002 and counts == [100, 101, 102]
+    assert {p.live_nodes for p in seen[:500]} == {100} and {p.live_nodes for p in seen[500:1001]} == {101}
+    assert seen[-1].live_nodes == 102
 
 
 def _on_a_terminal(args: list[str], until: bytes, seconds: float) -> tuple[subprocess.Popen[bytes], bytes]:
