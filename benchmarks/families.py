@@ -111,13 +111,18 @@ def _next_zone_free(i: int, n: int, zones: int, also: dict[int, str] | None = No
     return " and ".join(parts)
 
 
+SPLIT_FROM = 16  # more robots: one requirement per robot and zone (one per robot nests too deep to read)
+
+
 def ring(n: int, homes: bool = False) -> str:
     """N robots on a one-way ring of 2N zones, written as today's language allows (a copied
     component per robot): robot i starts in zone 2i; `go{i}` (the controller's) starts a move
     into the next zone, `arrived{i}` (the robot's) ends it. A zone is held by the robot in it
     and by the one moving into it or out of it; a robot may start a move only into a zone no
-    other robot holds: a requirement per robot naming every other robot for every zone. With
-    ``homes``, a robot rests only in its start zone (its only marked state): see ring_homes."""
+    other robot holds: a requirement per robot naming every other robot for every zone (beyond
+    :data:`SPLIT_FROM` robots, one per robot and zone: a requirement per robot would be an
+    expression more than 100 levels deep, which the language refuses). With ``homes``, a robot
+    rests only in its start zone (its only marked state): see ring_homes."""
     zones = 2 * n
     lines = ["robot Homes {" if homes else "robot Ring {"]
     for i in range(n):
@@ -134,7 +139,13 @@ def ring(n: int, homes: bool = False) -> str:
             "        behaviour {\n" + "\n".join(states) + "\n        }\n    }"
         )
     for i in range(n):
-        lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones)}")
+        if n <= SPLIT_FROM:
+            lines.append(f"    requirement go{i} needs {_next_zone_free(i, n, zones)}")
+            continue
+        for k in range(zones):  # (the same, written as the language's depth limit asks)
+            nxt = (k + 1) % zones
+            free = " and ".join(f"!(R{j}.at{nxt} or R{j}.moving{k} or R{j}.moving{nxt})" for j in range(n) if j != i)
+            lines.append(f"    requirement go{i} needs R{i}.at{k} => ({free})")
     lines.append("}")
     return "\n".join(lines) + "\n"
 

@@ -604,18 +604,113 @@ def test_a_quantifier_that_does_not_read_the_for_variable_is_resolved_once_for_t
     assert first is not second and first.right.right.operand is second.right.right.operand  # type: ignore[attr-defined]
 
 
-def test_robots_with_homes_of_their_own_are_not_counted_and_synthesize_says_why() -> None:
-    """The ring where each robot must get back to its own start (copies by hand, each marked
-    at its own zone): before, only --stats said 'no 3 components are copies of each other'."""
-    from families import ring_homes
+def ring_with_homes(zones: int, starts: list[int], homes: list[int]) -> str:
+    """The ring family's robots on a one-way ring of ``zones`` zones, robot i starting in zone
+    ``starts[i]`` and resting only in zone ``homes[i]``: copies by hand but for their homes."""
+    n = len(starts)
+    lines = ["robot Homes {"]
+    for i in range(n):
+        lines += [
+            f"    component R{i} {{",
+            f"        incoming message go{i} with type: none",
+            f"        outgoing message arrived{i} with type: none",
+            "        behaviour {",
+        ]
+        for k in range(zones):
+            flags = ("initial " if k == starts[i] else "") + ("marked " if k == homes[i] else "")
+            lines.append(f"            {flags}state at{k} {{ on request to go{i} goto moving{k} }}")
+            lines.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
+        lines += ["        }", "    }"]
+    lines += [f"    requirement go{i} needs {families._next_zone_free(i, n, zones)}" for i in range(n)]
+    return "\n".join([*lines, "}"]) + "\n"
 
-    result = synthesize_model(check_text(ring_homes(3)).model)
+
+HOME_NOTE = (
+    "R0 .. R{last} differ in their marked states (homes of their own); synthesis counted them all the same, as from "
+    "every state the requirements reach the fleet can get back to where it started, with every robot home"
+)
+
+
+@pytest.mark.parametrize("n", [3, 4, 5])
+def test_robots_with_homes_of_their_own_are_counted_where_the_fleet_can_always_get_back_to_its_start(n: int) -> None:
+    """The ring where each robot must get back to its own start (copies by hand, each marked at
+    its own zone): counted, with the monolithic method's supervisor, and synthesize says how."""
+    _, fleet = agree_with_monolithic(families.ring_homes(n), least=3)
+    assert fleet.details["fleet_note"] == HOME_NOTE.format(last=n - 1)  # type: ignore[attr-defined]
+    assert "homes of their own" in fleet.details["symmetry"]  # type: ignore[attr-defined]
+    result = synthesize_model(check_text(families.ring_homes(n)).model)
+    assert (result.method, result.details["fleet_note"]) == ("symmetric", HOME_NOTE.format(last=n - 1))
+
+
+def test_robots_with_homes_agree_with_explicit_synthesis_state_by_state() -> None:
+    network = build_network(check_text(families.ring_homes(3)).model)
+    explicit = synthesize_explicit(network)
+    fleet = synthesize_counted(network)
+    assert fleet.method == "symmetric"
+    supervisor = explicit.details["supervisor"]
+    for state in supervisor.controlled_states():
+        assert [fleet.allows(e, state) for e in network.events] == [supervisor.allows(e, state) for e in network.events]
+
+
+HOMES_AND_A_DEAD_END = """robot Parking {
+    component R0 {
+        incoming message go0 with type: none
+        behaviour {
+            initial marked state home { on request to go0 goto out }
+            state out { on request to go0 goto parked }
+            marked state parked { on request to go0 goto home }
+        }
+    }
+    component R1 {
+        incoming message go1 with type: none
+        behaviour {
+            initial marked state home { on request to go1 goto out }
+            state out { on request to go1 goto parked }
+            state parked { on request to go1 goto home }
+        }
+    }
+    component R2 {
+        incoming message go2 with type: none
+        behaviour {
+            initial marked state home { on request to go2 goto out }
+            state out { on request to go2 goto parked }
+            state parked { on request to go2 goto home }
+        }
+    }
+    requirement go0 needs !R0.parked
+    requirement go1 needs !R1.parked
+    requirement go2 needs !R2.parked
+}
+"""
+
+
+def test_robots_with_homes_that_need_a_supervisor_are_synthesized_monolithically() -> None:
+    """Only R0 may rest where no robot is let back from: counted, no state that has left the
+    start gets back to it, so which robot is where matters and the monolithic method decides (R0 may
+    go, R1 and R2 may not)."""
+    network = build_network(check_text(HOMES_AND_A_DEAD_END).model)
+    result = synthesize_counted(network)
     assert result.method == "symbolic"
     assert result.details["fleet_note"] == (
         "R0 .. R2 are copies of each other, but synthesis did not count them: they differ in their marked states "
-        "(R0 .. R2: each may rest in a place of its own), and synthesis counts only robots whose marked states are "
-        "the same; the supervisor is the monolithic method's (exact; slower on large fleets)"
+        "(each may rest in a place of its own), and counted, the fleet cannot always get back to where it started, "
+        "so which robot is where matters; the supervisor is the monolithic method's (exact; slower on large fleets)"
     )
+    explicit = synthesize_explicit(network)
+    start = next(iter(explicit.details["supervisor"].controlled_states()))
+    assert [e.name for e in network.events if result.allows(e, start)] == ["go0"]
+    for state in explicit.details["supervisor"].controlled_states():
+        for event in network.events:
+            assert result.allows(event, state) == explicit.allows(event, state), event.name
+
+
+def test_robots_with_homes_that_do_not_start_home_are_synthesized_monolithically() -> None:
+    """Three robots on a ring of three zones, each to rest in the next zone: none can move, so
+    none gets home and there is no supervisor, although the fleet is always at its start."""
+    network = build_network(check_text(ring_with_homes(3, [0, 1, 2], [1, 2, 0])).model)
+    result = synthesize_counted(network)
+    assert (result.method, result.ok) == ("symbolic", False)
+    assert "not every component starts in a marked state" in result.details["fleet_note"]
 
 
 def test_the_generated_module_writes_each_long_condition_once_and_decides_as_before() -> None:
@@ -856,7 +951,7 @@ def test_copies_that_cannot_be_counted_look_for_bad_states_where_the_requirement
     looks for bad states only among the states the requirements reach, as on a counted fleet (a
     ring of 10 such robots: 61 s before, 18 s), and allows the same events where the fleet goes.
     Asked for the monolithic method, it looks everywhere (the reference)."""
-    network = build_network(check_text(families.ring_homes(3)).model)
+    network = build_network(check_text(ring_with_homes(6, [0, 2, 4], [1, 3, 5])).model)  # (not home at the start)
     fleet = synthesize_counted(network)
     first = synthesize_monolithic(network, SynthesisOptions(forward="first"))
     everywhere = synthesize_monolithic(network)

@@ -204,6 +204,8 @@ def test_random_models_match_libfaudes(text: str) -> None:
         ("ring", 3),
         ("lift", 3),
         ("crossing", 3),
+        ("ring_homes", 3),
+        ("ring_homes", 4),
     ],
 )
 def test_fleets_match_libfaudes(family: str, n: int) -> None:

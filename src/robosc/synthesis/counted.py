@@ -17,16 +17,26 @@ from robosc.synthesis.fleet_why import describer
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Watch
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
-from robosc.synthesis.symmetry import MIN_AGENTS, CountedSupervisor, NotSymmetric, counted, lift, rename_back
+from robosc.synthesis.symbolic import Fixpoint, fixpoint, synthesize_monolithic
+from robosc.synthesis.symmetry import (
+    MIN_AGENTS,
+    Counted,
+    CountedSupervisor,
+    NotSymmetric,
+    counted,
+    lift,
+    rename_back,
+    robots_of,
+)
 
 
 def synthesize_counted(
     network: Network, options: SynthesisOptions | None = None, least: int = MIN_AGENTS, watch: Watch | None = None
 ) -> SynthesisResult:
     """Synthesis by the counter abstraction where the network has a group of at least ``least``
-    symmetric agents; the monolithic method (saying why in ``details["symmetry"]``) where not.
-    ``watch``: told how far it is."""
+    symmetric agents (or agents that are copies but for their homes, where
+    :func:`synthesize_homes` applies); the monolithic method (saying why in
+    ``details["symmetry"]``) where not. ``watch``: told how far it is."""
     options = options or DEFAULT
     watch = watch if watch is not None else Watch.quiet()
     start = time.perf_counter()
@@ -34,11 +44,16 @@ def synthesize_counted(
     try:
         fleet = counted(network, least)
     except NotSymmetric as reason:
+        why = str(reason)
+        if reason.homes:
+            homes, why = synthesize_homes(network, options, least, watch, start)
+            if homes is not None:
+                return homes
         result = synthesize_monolithic(network, options, watch, fleet=bool(reason.robots))
-        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {reason}")
+        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {why}")
         if reason.robots:  # a fleet: say why it was not counted
             fallback["fleet_note"] = (
-                f"{reason.robots} are copies of each other, but synthesis did not count them: {reason}; "
+                f"{reason.robots} are copies of each other, but synthesis did not count them: {why}; "
                 "the supervisor is the monolithic method's (exact; slower on large fleets)"
             )
         return SynthesisResult(
@@ -52,6 +67,57 @@ def synthesize_counted(
             fallback,
         )
     fp = fixpoint(fleet.network, options, watch)
+    return _counted_result(network, fleet, fp, watch, start)
+
+
+def synthesize_homes(
+    network: Network, options: SynthesisOptions, least: int, watch: Watch, start: float
+) -> tuple[SynthesisResult | None, str]:
+    """The supervisor of robots that are copies but for their homes (each may rest only in a
+    place of its own), by counting them, where that is exact; else None and why not.
+
+    Counting forgets which robot is where, so it cannot say whether each robot can get home.
+    It can say whether the fleet can always get back to *a* start: to the robots in the same
+    places as at the start, each perhaps in another's place. Where the system starts in a
+    marked state and, counted with its start as the only marked state, has no bad state, that
+    is enough. Take a state ``x`` the requirements reach, and a path from it to the start with
+    the robots permuted, ``p(start)``. The permutations ``p`` with a path from ``start`` to
+    ``p(start)`` form a group: from ``p(start)``, the path to ``q(start)`` with its robots
+    permuted by ``p`` leads to ``pq(start)`` (the copies behave alike; only their homes
+    differ, and homes are not in the paths), and a finite set closed under composition holds
+    each one's inverse. ``p`` is in it (``start`` reaches ``x``, which reaches ``p(start)``),
+    so is its inverse, and permuting the path from ``start`` to ``p⁻¹(start)`` by ``p`` leads
+    from ``p(start)`` back to ``start``, which is marked. So every state the requirements
+    reach can get home with every robot at once, nothing is bad, and the supervisor is the
+    requirements, as the counted one is. Where something is bad, which robot is where
+    matters: the monolithic method decides (the caller's fallback)."""
+    if network.marker is not None or any(a.initial not in a.marked for a in network.automata):
+        return None, (
+            "they differ in their marked states (each may rest in a place of its own), and not every component "
+            "starts in a marked state, so counting them cannot show that each robot can get home"
+        )
+    try:
+        fleet = counted(network, least, marking=False)
+    except NotSymmetric as reason:
+        return None, str(reason)
+    fp = fixpoint(fleet.network, options, watch, to_start=True)
+    if fp.bad != fp.enc.false:
+        return None, (
+            "they differ in their marked states (each may rest in a place of its own), and counted, the fleet "
+            "cannot always get back to where it started, so which robot is where matters"
+        )
+    robots = "; ".join(robots_of(group) for group in fleet.groups)
+    note = (
+        f"{robots} differ in their marked states (homes of their own); synthesis counted them all the same, as "
+        "from every state the requirements reach the fleet can get back to where it started, with every robot home"
+    )
+    return _counted_result(network, fleet, fp, watch, start, note), ""
+
+
+def _counted_result(
+    network: Network, fleet: Counted, fp: Fixpoint, watch: Watch, start: float, note: str | None = None
+) -> SynthesisResult:
+    """The supervisor a counted synthesis found (``note``: what the fleet should know of how)."""
     enc = fp.enc
     described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
     supervisor = CountedSupervisor(network, fleet, fp)
@@ -59,9 +125,11 @@ def synthesize_counted(
     details: dict[str, Any] = {
         "counted": fp,
         "effort": enc.effort(),
-        "symmetry": f"counted ({described})",
+        "symmetry": f"counted ({described})" + ("; homes of their own, every state gets back to the start" if note else ""),
         "supervisor": supervisor,
     }
+    if note is not None:
+        details["fleet_note"] = note
     if (fp.initial & fp.bad) != enc.false:
         return SynthesisResult(
             network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details

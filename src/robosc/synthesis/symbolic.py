@@ -108,10 +108,16 @@ class Fixpoint:
 
 
 def fixpoint(
-    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None, fleet: bool = False
+    network: Network,
+    options: SynthesisOptions = DEFAULT,
+    watch: Watch | None = None,
+    fleet: bool = False,
+    to_start: bool = False,
 ) -> Fixpoint:
     """The fixed points of synthesis over ``network``; ``fleet``: it is a fleet of copies (for
-    :data:`robosc.synthesis.options.FORWARDS`' auto, as a counted network is)."""
+    :data:`robosc.synthesis.options.FORWARDS`' auto, as a counted network is); ``to_start``:
+    the initial state is the only marked one, whatever the model marks (a state is then bad
+    where the system cannot get back to its start: see robosc.synthesis.counted.synthesize_homes)."""
     watch = watch if watch is not None else Watch.quiet()
     watch.phase("encoding")
     enc = Encoding(network, options)
@@ -140,6 +146,8 @@ def fixpoint(
     initial = enc.state(
         {a: a.initial for a in network.automata}, {v: network.initial_values[v] for v in network.variables}
     )
+    if to_start:
+        marked = initial
     explore = options.explore
     events = edge_order(network, options.edges)  # the order the chained loops apply the events in
     uncontrollable = [relation[e] for e in events if not e.controllable]

@@ -41,6 +41,7 @@ class NotSymmetric(Exception):
     the groups of copies found, when there were some (a fleet that could not be counted)."""
 
     robots: str = ""
+    homes: bool = False  # copies but for their marked states (robots with homes of their own)
 
 
 class Differ(NotSymmetric):
@@ -650,10 +651,12 @@ class Counted:
     translator: Translator = field(repr=False)
 
 
-def counted(network: Network, least: int = 2) -> Counted:
+def counted(network: Network, least: int = 2, marking: bool = True) -> Counted:
     """The counter abstraction of ``network`` over its groups of at least ``least`` agents;
-    raises :class:`NotSymmetric` saying why there is none."""
-    found = [group for group in groups(network) if len(group.agents) >= least]
+    raises :class:`NotSymmetric` saying why there is none. ``marking`` False: copies also where
+    they differ in their marked states (robots with homes of their own: the counted network's
+    marking then means nothing, see robosc.synthesis.counted.synthesize_homes)."""
+    found = [group for group in groups(network, marking) if len(group.agents) >= least]
     if not found:
         reason = NotSymmetric(f"no {least} components are copies of each other")
         homes = [group for group in groups(network, marking=False) if len(group.agents) >= least]
@@ -664,6 +667,7 @@ def counted(network: Network, least: int = 2) -> Counted:
                 "own), and synthesis counts only robots whose marked states are the same"
             )
             reason.robots = f"{names[0]} .. {names[-1]}"
+            reason.homes = True
         raise reason
     copies = "; ".join(robots_of(group) for group in found)
     while True:  # each round splits a group into smaller ones, or ends
