@@ -38,7 +38,7 @@ def summary() -> list[str]:
         lines.append(
             f"fleet oracle: {SEEN['models']} random fleets compared ({SEEN['too large']} left out: over {MAX_STATES} "
             f"states); counted by the default method: {SEEN['counted (default)']}, counting pairs too: "
-            f"{SEEN['counted (pairs)']}; every one also against libFAUDES; no supervisor: {SEEN['no supervisor']}"
+            f"{SEEN['counted (pairs)']} ({SEEN['counted, homes of their own']} of them copies with homes of their own); every one also against libFAUDES; no supervisor: {SEEN['no supervisor']}"
         )
         lines += [f"  {feature}: {SEEN[feature]}" for feature in FEATURES]
     if SEEN["modules"]:
@@ -76,6 +76,7 @@ def oracle(text: str) -> collections.Counter[str]:
         {
             "counted (default)": default.method == "symmetric",
             "counted (pairs)": pairs.method == "symmetric",
+            "counted, homes of their own": "homes of their own" in str(pairs.details["symmetry"]),
             "no supervisor": not explicit.ok,
         }
     )

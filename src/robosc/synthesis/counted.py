@@ -27,6 +27,7 @@ from robosc.synthesis.symmetry import (
     lift,
     rename_back,
     robots_of,
+    with_homes,
 )
 
 
@@ -41,14 +42,15 @@ def synthesize_counted(
     watch = watch if watch is not None else Watch.quiet()
     start = time.perf_counter()
     watch.phase("counting")
+    homes_why = None
+    if with_homes(network, least):  # copies but for their homes: all counted where that is exact
+        homes, homes_why = synthesize_homes(network, options, least, watch, start)
+        if homes is not None:
+            return homes
     try:
         fleet = counted(network, least)
     except NotSymmetric as reason:
-        why = str(reason)
-        if reason.homes:
-            homes, why = synthesize_homes(network, options, least, watch, start)
-            if homes is not None:
-                return homes
+        why = homes_why if reason.homes and homes_why else str(reason)
         result = synthesize_monolithic(network, options, watch, fleet=bool(reason.robots))
         fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {why}")
         if reason.robots:  # a fleet: say why it was not counted

@@ -651,6 +651,17 @@ class Counted:
     translator: Translator = field(repr=False)
 
 
+def with_homes(network: Network, least: int = 2) -> bool:
+    """Whether ``network`` has at least ``least`` agents that are copies but for their marked
+    states (robots with homes of their own), beyond the groups of plain copies."""
+    alike = {frozenset(id(a) for a in g.agents) for g in groups(network) if len(g.agents) >= least}
+    return any(
+        frozenset(id(a) for a in g.agents) not in alike
+        for g in groups(network, marking=False)
+        if len(g.agents) >= least
+    )
+
+
 def counted(network: Network, least: int = 2, marking: bool = True) -> Counted:
     """The counter abstraction of ``network`` over its groups of at least ``least`` agents;
     raises :class:`NotSymmetric` saying why there is none. ``marking`` False: copies also where
