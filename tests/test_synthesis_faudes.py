@@ -226,5 +226,5 @@ def test_fleets_match_libfaudes(family: str, n: int) -> None:
     assert synthesize_monolithic(network).reachable_states == expected[0]
     fleet = synthesize_counted(network, least=2)
     assert fleet.method == "symmetric"
-    for state in explicit.controlled_states():
-        assert [fleet.allows(e, state) for e in network.events] == [explicit.allows(e, state) for e in network.events]
+    for state in explicit.controlled_states():  # (the state encoded once for all events: the lift of 4, 19,741 states)
+        assert fleet.allowed_events(state) == explicit.allowed_events(state)
