@@ -19,7 +19,7 @@ from robosc.synthesis.explicit import synthesize_explicit
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.restrictions import restriction
 from robosc.synthesis.symbolic import synthesize_monolithic
-from robosc.synthesis.symmetry import counted
+from robosc.synthesis.symmetry import counted, with_homes
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
 import families
@@ -640,6 +640,18 @@ def test_robots_with_homes_of_their_own_are_counted_where_the_fleet_can_always_g
     assert "homes of their own" in fleet.details["symmetry"]  # type: ignore[attr-defined]
     result = synthesize_model(check_text(families.ring_homes(n)).model)
     assert (result.method, result.details["fleet_note"]) == ("symmetric", HOME_NOTE.format(last=n - 1))
+
+
+@pytest.mark.parametrize("family", ["ring", "ring_instances", "warehouse_instances"])
+def test_copies_with_the_same_marked_states_are_counted_as_copies_not_as_robots_with_homes(family: str) -> None:
+    """Only copies that differ in their marked states take the way of homes: a fleet of plain
+    copies is counted once, with its own marking, and no note about homes."""
+    network = build_network(check_text(families.FLEETS[family](3)).model)
+    assert not with_homes(network, 2)
+    result = synthesize_counted(network)
+    assert result.method == "symmetric" and "fleet_note" not in result.details
+    assert "homes" not in result.details["symmetry"]
+    assert with_homes(build_network(check_text(families.ring_homes(3)).model), 2)
 
 
 def test_robots_with_homes_agree_with_explicit_synthesis_state_by_state() -> None:

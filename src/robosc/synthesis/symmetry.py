@@ -654,9 +654,10 @@ class Counted:
 def with_homes(network: Network, least: int = 2) -> bool:
     """Whether ``network`` has at least ``least`` agents that are copies but for their marked
     states (robots with homes of their own), beyond the groups of plain copies."""
-    alike = {frozenset(id(a) for a in g.agents) for g in groups(network) if len(g.agents) >= least}
+    # (by name: each call of groups makes its own agents)
+    alike = {frozenset(a.component.name for a in g.agents) for g in groups(network) if len(g.agents) >= least}
     return any(
-        frozenset(id(a) for a in g.agents) not in alike
+        frozenset(a.component.name for a in g.agents) not in alike
         for g in groups(network, marking=False)
         if len(g.agents) >= least
     )
