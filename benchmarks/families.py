@@ -123,13 +123,20 @@ def ring(n: int, homes: bool = False) -> str:
     :data:`SPLIT_FROM` robots, one per robot and zone: a requirement per robot would be an
     expression more than 100 levels deep, which the language refuses). With ``homes``, a robot
     rests only in its start zone (its only marked state): see ring_homes."""
-    zones = 2 * n
-    lines = ["robot Homes {" if homes else "robot Ring {"]
+    starts = [2 * i for i in range(n)]
+    return ring_of(2 * n, starts, starts if homes else None)
+
+
+def ring_of(zones: int, starts: list[int], homes: list[int] | None = None) -> str:
+    """:func:`ring`'s robots on a one-way ring of ``zones`` zones, robot i starting in zone
+    ``starts[i]``; with ``homes``, resting only in zone ``homes[i]`` (else in every zone)."""
+    n = len(starts)
+    lines = ["robot Homes {" if homes is not None else "robot Ring {"]
     for i in range(n):
         states = []
         for k in range(zones):
-            initial = "initial " if k == 2 * i else ""
-            marked = "marked " if k == 2 * i or not homes else ""
+            initial = "initial " if k == starts[i] else ""
+            marked = "marked " if homes is None or k == homes[i] else ""
             states.append(f"            {initial}{marked}state at{k} {{ on request to go{i} goto moving{k} }}")
             states.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
         lines.append(

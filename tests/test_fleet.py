@@ -604,27 +604,6 @@ def test_a_quantifier_that_does_not_read_the_for_variable_is_resolved_once_for_t
     assert first is not second and first.right.right.operand is second.right.right.operand  # type: ignore[attr-defined]
 
 
-def ring_with_homes(zones: int, starts: list[int], homes: list[int]) -> str:
-    """The ring family's robots on a one-way ring of ``zones`` zones, robot i starting in zone
-    ``starts[i]`` and resting only in zone ``homes[i]``: copies by hand but for their homes."""
-    n = len(starts)
-    lines = ["robot Homes {"]
-    for i in range(n):
-        lines += [
-            f"    component R{i} {{",
-            f"        incoming message go{i} with type: none",
-            f"        outgoing message arrived{i} with type: none",
-            "        behaviour {",
-        ]
-        for k in range(zones):
-            flags = ("initial " if k == starts[i] else "") + ("marked " if k == homes[i] else "")
-            lines.append(f"            {flags}state at{k} {{ on request to go{i} goto moving{k} }}")
-            lines.append(f"            state moving{k} {{ on response from arrived{i} goto at{(k + 1) % zones} }}")
-        lines += ["        }", "    }"]
-    lines += [f"    requirement go{i} needs {families._next_zone_free(i, n, zones)}" for i in range(n)]
-    return "\n".join([*lines, "}"]) + "\n"
-
-
 HOME_NOTE = (
     "R0 .. R{last} differ in their marked states (homes of their own); synthesis counted them all the same, as from "
     "every state the requirements reach the fleet can get back to where it started, with every robot home"
@@ -719,7 +698,7 @@ def test_robots_with_homes_that_need_a_supervisor_are_synthesized_monolithically
 def test_robots_with_homes_that_do_not_start_home_are_synthesized_monolithically() -> None:
     """Three robots on a ring of three zones, each to rest in the next zone: none can move, so
     none gets home and there is no supervisor, although the fleet is always at its start."""
-    network = build_network(check_text(ring_with_homes(3, [0, 1, 2], [1, 2, 0])).model)
+    network = build_network(check_text(families.ring_of(3, [0, 1, 2], [1, 2, 0])).model)
     result = synthesize_counted(network)
     assert (result.method, result.ok) == ("symbolic", False)
     assert "not every component starts in a marked state" in result.details["fleet_note"]
@@ -963,7 +942,7 @@ def test_copies_that_cannot_be_counted_look_for_bad_states_where_the_requirement
     looks for bad states only among the states the requirements reach, as on a counted fleet (a
     ring of 10 such robots: 61 s before, 18 s), and allows the same events where the fleet goes.
     Asked for the monolithic method, it looks everywhere (the reference)."""
-    network = build_network(check_text(ring_with_homes(6, [0, 2, 4], [1, 3, 5])).model)  # (not home at the start)
+    network = build_network(check_text(families.ring_of(6, [0, 2, 4], [1, 3, 5])).model)  # (not home at the start)
     fleet = synthesize_counted(network)
     first = synthesize_monolithic(network, SynthesisOptions(forward="first"))
     everywhere = synthesize_monolithic(network)
