@@ -42,7 +42,7 @@ ROS1_PYTHON = os.environ.get("ROBOSC_ROS1_PYTHON", "/usr/bin/python3")
 def load(name: str) -> Any:
     """The generated module of an example (this robosc), loaded on this robosc's runtime."""
     from robosc.api import load_model, plan_supervisor, synthesize_model
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
 
     return load_module(plan_supervisor(synthesize_model(load_model(ROOT / "examples" / f"{name}.rscd"))))
 
@@ -415,8 +415,8 @@ def ros_latency(ros: int, example: str, samples: int, tick_on_message: bool, wor
             path, adapter, setup = package, "ros2", ""
             stop, run = "raise SystemExit(0)", f'adapter.main(Robot, "controller", ["bench", *{params!r}])'
             robot = ROBOT_ROS2.format(gap=gap)
+        from robosc.codegen.module import module_name
         from robosc.codegen.ros import package_name
-        from robosc.runtime.module import module_name
 
         plan = _plan(example)
         driver = NODE_DRIVER.format(

@@ -101,7 +101,7 @@ def one_run(plan, module, world, ros: int, robots: int, seconds: float, speed: f
 def warehouse_run(robots: int, speed: float, ros: int) -> dict:
     """One run of the warehouse's fleet with ``robots`` robots (see the module's description)."""
     from robosc.api import check_text, plan_supervisor, synthesize_model
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     from robosc.sim.fleet_ros import run_fleet_ros
     from robosc.sim.world import load_world
 
@@ -172,7 +172,7 @@ def main() -> None:
     args.speed = args.speed or 2.0
 
     from robosc.api import plan_supervisor, synthesize_file
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     from robosc.sim.world import load_world
 
     result = synthesize_file(ROOT / "examples" / "maze_solver.rscd")

@@ -90,7 +90,7 @@ module = allowed_us = None
 if result.ok:
     import statistics
     from robosc.api import plan_supervisor, supervisor_module
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     module = len(supervisor_module(result).encode())
     Robot = load_module(plan_supervisor(result)).Robot
     try:

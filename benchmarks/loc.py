@@ -92,7 +92,7 @@ def main() -> None:
     parser.add_argument("--baseline", help="a git revision to count as well (e.g. f1df180)")
     args = parser.parse_args()
     from robosc.api import check_file
-    from robosc.runtime.module import runtime_files
+    from robosc.codegen.module import runtime_files
 
     with tempfile.TemporaryDirectory() as tmp:
         old_source = None

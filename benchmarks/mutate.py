@@ -46,8 +46,8 @@ def pipeline(text: str, name: str, workdir: Path) -> str:
     examples import). Returns what happened: "errors", "library", "no supervisor",
     "refused by ROS" or "generated". Any other exception is a crash and propagates."""
     from robosc.api import check_text, plan_supervisor, synthesize_model
+    from robosc.codegen.module import render_module
     from robosc.codegen.ros import RosError, generate
-    from robosc.runtime.module import render_module
 
     (workdir / "emergency_stop.rscd").write_text(SOURCES["emergency_stop.rscd"])
     result = check_text(text, str(workdir / name))

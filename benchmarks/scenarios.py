@@ -132,7 +132,7 @@ SCENARIOS = {  # name: (model, world, tasks)
 def coordinators(model_name: str) -> dict[str, object]:
     """The generated coordinator module of robosc's supervisor and of the hand-written rule."""
     from robosc.api import plan_supervisor, synthesize_file
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     from robosc.synthesis.result import EventGuard, SynthesisResult
 
     result = synthesize_file(FOLDER / f"{model_name}.rscd")

@@ -7,8 +7,8 @@ from __future__ import annotations
 import random
 
 from robosc.api import plan_supervisor
+from robosc.debug.simulator import Simulator
 from robosc.plant.network import Event
-from robosc.runtime.simulator import Simulator
 from robosc.synthesis.evaluate import evaluate
 from robosc.synthesis.explicit import Edges, successors
 from robosc.synthesis.result import SynthesisResult

@@ -81,7 +81,7 @@ def initial_states(model: str | Path) -> dict[str, str]:
     """Where each component of ``model`` starts (its initial location, and its variables' initial
     values as JSON where it has any): what stand-in drivers started with the node report when it
     asks."""
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
 
     robot = load_module(plan_supervisor(synthesize_model(load_model(ROOT / model)))).Robot
     reports: dict[str, dict[str, object]] = {}

@@ -14,8 +14,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
+from robosc.debug.simulator import load_module
 from robosc.runtime.onboard.values import Data
-from robosc.runtime.simulator import load_module
 from test_onboard import FakeNode, Float32, Int16, Twist
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -86,7 +86,7 @@ def test_ros1_catkin_package(tmp_path: Path) -> None:
 
 
 def test_the_runtime_is_copied_verbatim(tmp_path: Path) -> None:
-    from robosc.runtime.module import runtime_files
+    from robosc.codegen.module import runtime_files
 
     package = build_package("examples/maze_solver.rscd", 2, "controller", tmp_path)
     copied = {p.name: p.read_text() for p in (package / "maze_solver_robosc/onboard").iterdir()}

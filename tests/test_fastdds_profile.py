@@ -12,8 +12,8 @@ from typing import Any
 import pytest
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
+from robosc.debug.simulator import load_module
 from robosc.runtime.onboard import profiles
-from robosc.runtime.simulator import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 NS = "{http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles}"

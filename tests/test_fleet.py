@@ -726,8 +726,8 @@ def test_the_generated_module_writes_each_long_condition_once_and_decides_as_bef
 def _modules(text: str, monkeypatch: pytest.MonkeyPatch) -> tuple[Any, Any]:
     """The fleet's generated module as robosc makes it (counts read from tallies) and, as the
     reference, with every count written out as a sum over the robots."""
-    from robosc.runtime.plan import _Planner, plan
-    from robosc.runtime.simulator import load_module
+    from robosc.codegen.plan import _Planner, plan
+    from robosc.debug.simulator import load_module
 
     result = synthesize_model(check_text(text).model)
     tallied = load_module(plan(result))

@@ -12,7 +12,7 @@ import pytest
 from robosc.api import check_text, plan_supervisor, synthesize_model
 from robosc.cli.main import main
 from robosc.cli.sim import fleet_table
-from robosc.runtime.simulator import load_module
+from robosc.debug.simulator import load_module
 from robosc.sim.fleet import FleetMisfit, FleetRun, FleetWorld, Jitter
 from robosc.sim.world import WorldError, load_world
 

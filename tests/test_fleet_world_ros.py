@@ -27,7 +27,7 @@ pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim
 from robosc.api import plan_supervisor, synthesize_file
 from robosc.cli.main import main
 from robosc.debug.fleet_view import render_fleet_page
-from robosc.runtime.simulator import load_module
+from robosc.debug.simulator import load_module
 from robosc.sim.bridge.protocol import Whereabouts
 from robosc.sim.fleet_ros import reports, run_fleet_ros, wiring
 from robosc.sim.graph import BRIDGE_PACKAGE, Graph

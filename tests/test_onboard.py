@@ -12,12 +12,12 @@ from typing import Any
 import pytest
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
+from robosc.debug.simulator import load_module
 from robosc.runtime.onboard.messages import Unsendable, conforms, fill, wire_type
 from robosc.runtime.onboard.node import PARAMETERS, NodeCore, controller_side
 from robosc.runtime.onboard.recording import EventLog
 from robosc.runtime.onboard.supervisor import Communication, Warnings
 from robosc.runtime.onboard.values import Data, finite
-from robosc.runtime.simulator import load_module
 
 ROOT = Path(__file__).resolve().parent.parent
 

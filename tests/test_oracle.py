@@ -17,8 +17,8 @@ from fleet_models import FEATURES, fleets
 from module_check import module_agrees
 from random_models import robots
 from robosc.api import check_text
+from robosc.codegen import pyexpr
 from robosc.plant import build_network
-from robosc.runtime import pyexpr
 from robosc.synthesis.compare import compare
 from robosc.synthesis.counted import synthesize_counted
 from robosc.synthesis.explicit import TooManyStates, synthesize_explicit

@@ -18,15 +18,15 @@ from hypothesis import HealthCheck, given, settings
 
 from random_models import robots
 from robosc.api import check_text, load_model, plan_supervisor, supervisor_module, synthesize_model
+from robosc.codegen.module import runtime_files
+from robosc.codegen.plan import plan
+from robosc.codegen.pyexpr import GENERATED
+from robosc.debug.simulator import load_module
 from robosc.language import model as m
 from robosc.plant import build_network
-from robosc.runtime.module import runtime_files
 from robosc.runtime.onboard import VERSION, RuntimeMismatch, check_version
 from robosc.runtime.onboard.supervisor import Supervisor
 from robosc.runtime.onboard.values import Data
-from robosc.runtime.plan import plan
-from robosc.runtime.pyexpr import GENERATED
-from robosc.runtime.simulator import load_module
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.explicit import synthesize_explicit
 from robosc.synthesis.methods import synthesize_symbolic
@@ -512,9 +512,9 @@ def test_a_long_condition_that_reads_received_data_stays_where_it_stands() -> No
     reads the received data, in every part of a chain, stays in the handler, where the data
     is (whether a part reads data is found once per part: asking again for each part of a long
     chain made the module of 500 robots take minutes)."""
+    from robosc.codegen.pyexpr import SHARED_FROM, Names, python
     from robosc.language import model as lm
     from robosc.plant.expressions import NO_SPAN
-    from robosc.runtime.pyexpr import SHARED_FROM, Names, python
 
     def chain(parts: list[lm.Expr]) -> lm.Expr:
         result = parts[0]

@@ -13,7 +13,7 @@ pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim
 
 from robosc.api import plan_supervisor, synthesize_file
 from robosc.cli.main import main
-from robosc.runtime.simulator import load_module
+from robosc.debug.simulator import load_module
 from robosc.sim.run import roles, run_local
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import load_world

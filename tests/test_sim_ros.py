@@ -17,7 +17,7 @@ from ros_support import new_domain, ros1_available, ros2_available, unavailable
 pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim]')")
 
 from robosc.api import plan_supervisor, synthesize_file
-from robosc.runtime.simulator import load_module
+from robosc.debug.simulator import load_module
 from robosc.sim.run import Report, run_ros
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import load_world

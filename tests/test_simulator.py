@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 
 from robosc.api import check_text, load_model, simulator, synthesize_model
-from robosc.runtime.simulator import CommandError, Violation
+from robosc.debug.simulator import CommandError, Violation
 
 ROOT = Path(__file__).resolve().parent.parent
 

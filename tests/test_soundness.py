@@ -13,8 +13,8 @@ import pytest
 
 from module_check import module_agrees
 from robosc.api import cross_check, load_model, plan_supervisor, synthesize_model
+from robosc.debug.simulator import Lookahead, Simulator, Violation
 from robosc.plant import build_network
-from robosc.runtime.simulator import Lookahead, Simulator, Violation
 from robosc.synthesis.methods import synthesize_symbolic
 from robosc.synthesis.result import EventGuard, SynthesisResult
 from robosc.synthesis.symbolic import synthesize_monolithic

@@ -23,9 +23,9 @@ from robosc.language.source import SourceFile
 from robosc.record import field, record
 
 if TYPE_CHECKING:
+    from robosc.codegen.plan import Plan
+    from robosc.debug.simulator import Simulator
     from robosc.language.reparse import Reparser
-    from robosc.runtime.plan import Plan
-    from robosc.runtime.simulator import Simulator
     from robosc.sim.run import Report
     from robosc.sim.world import World
     from robosc.synthesis.compare import Comparison
@@ -220,21 +220,21 @@ def plan_supervisor(result: SynthesisResult) -> Plan:
     """Lay out a successful synthesis result for code generation and simulation
     (``robosc.codegen.ros.generate`` raises ``RosError``, with the model span, when the
     model cannot run on ROS as it is, e.g. a service that links no interface)."""
-    from robosc.runtime.plan import plan
+    from robosc.codegen.plan import plan
 
     return plan(result)
 
 
 def supervisor_module(result: SynthesisResult) -> str:
     """The stand-alone Python supervisor module (Python 3.8+, standard library only)."""
-    from robosc.runtime.module import render_module
+    from robosc.codegen.module import render_module
 
     return render_module(plan_supervisor(result))
 
 
 def simulator(result: SynthesisResult, seed: int | None = None, log: TextIO | None = None) -> Simulator:
     """A simulator running the generated supervisor, checking each step against ``result``."""
-    from robosc.runtime.simulator import Simulator
+    from robosc.debug.simulator import Simulator
 
     return Simulator(result, plan_supervisor(result), seed=seed, log=log)
 
@@ -266,7 +266,7 @@ def run_world(
     the result's plan when it is made already; ``on_note`` hears of the model's topics the
     simulator does not have. Raises ``robosc.sim.run.Misfit`` when the model sends none of the
     commands the world's robots obey."""
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     from robosc.sim.run import fit, run_local, run_ros
     from robosc.sim.world import load_world
 

@@ -14,9 +14,7 @@ import click
 from robosc.language.model import Model
 
 if TYPE_CHECKING:
-    from robosc.runtime.plan import Plan
     from robosc.synthesis.progress import Progress
-    from robosc.synthesis.result import SynthesisResult
 
 EXIT_OK = 0
 EXIT_MODEL_ERRORS = 1
@@ -125,18 +123,3 @@ def synthesis_running(show: bool = True) -> Iterator[Callable[[Progress], None] 
             sys.stderr.flush()
         for number, handler in zip(ending, before, strict=False):  # none where it is not main
             signal.signal(number, handler)
-
-
-def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[SynthesisResult, Plan]:
-    """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
-    printed) when no supervisor exists."""
-    from robosc.api import plan_supervisor, synthesize_model
-    from robosc.cli.synthesize import print_result
-
-    model = load_robot(file, include, purpose)
-    with synthesis_running() as progress:
-        result = synthesize_model(model, progress=progress)
-    if not result.ok:
-        print_result(result)
-        raise exit_with(EXIT_MODEL_ERRORS)
-    return result, plan_supervisor(result)

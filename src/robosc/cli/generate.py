@@ -13,9 +13,9 @@ from robosc.cli.common import (
     include_option,
     input_problem,
     say,
-    supervised,
     width,
 )
+from robosc.cli.results import supervised
 
 MODE = click.option(
     "--mode",
@@ -105,8 +105,8 @@ def build(file: str, output: str, mode: str, relative_names: bool, include: tupl
     """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
     stand-alone supervisor module (with the runtime it needs) and the CIF file."""
     from robosc.codegen.cif import to_cif
+    from robosc.codegen.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
     from robosc.codegen.ros import package_name
-    from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
 
     result, plan = supervised(file, include, "a build")
     out = Path(output)

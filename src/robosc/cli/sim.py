@@ -19,9 +19,9 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
-    supervised,
     view_port_option,
 )
+from robosc.cli.results import supervised
 
 if TYPE_CHECKING:
     from robosc.sim.run import Report
@@ -189,7 +189,7 @@ def _fleet(
     package and the simulator's node) or in this process (exits). ``port``: serve the fleet's
     live view there."""
     from robosc.debug.fleet_view import render_fleet_page
-    from robosc.runtime.simulator import load_module
+    from robosc.debug.simulator import load_module
     from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
     from robosc.sim.fleet_ros import run_fleet_ros
     from robosc.sim.fleet_view import FleetFeed

@@ -16,12 +16,12 @@ from robosc.cli.common import (
     include_option,
     input_problem,
     say,
-    supervised,
     view_port_option,
 )
+from robosc.cli.results import supervised
 
 if TYPE_CHECKING:
-    from robosc.runtime.simulator import Outcome, Simulator
+    from robosc.debug.simulator import Outcome, Simulator
 
 HELP = """commands:
   tick [N]              run N controller cycles (default 1)
@@ -73,7 +73,7 @@ def simulate(
     if script is not None and steps is not None:
         raise input_problem("use either --script or --random, not both")
     result, plan = supervised(file, include, "simulation")
-    from robosc.runtime.simulator import Simulator, Violation
+    from robosc.debug.simulator import Simulator, Violation
 
     sinks: list[Callable[[dict[str, Any]], None]] = []
     closers: list[Callable[[], None]] = []
@@ -169,8 +169,8 @@ def _report(sim: Simulator, outcome: Outcome, quiet: bool) -> None:
 
 
 def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
+    from robosc.debug.simulator import CommandError
     from robosc.language.loader import InputError, regular_file
-    from robosc.runtime.simulator import CommandError
 
     try:
         with regular_file(path, "a script").open(encoding="utf-8") as handle:
@@ -193,7 +193,7 @@ def _scripted(sim: Simulator, path: str, quiet: bool) -> int:
 def _random(sim: Simulator, steps: int, seed: int | None, quiet: bool, rate: float | None = None) -> int:
     import time
 
-    from robosc.runtime.simulator import SEARCH_LIMIT
+    from robosc.debug.simulator import SEARCH_LIMIT
 
     rng = random.Random(seed)
     start = time.monotonic()
@@ -226,7 +226,7 @@ def _show_state(sim: Simulator) -> None:
 
 
 def _interactive(sim: Simulator) -> int:
-    from robosc.runtime.simulator import CommandError, Violation
+    from robosc.debug.simulator import CommandError, Violation
 
     say(f"simulating {sim.network.model.name}; 'help' lists the commands")
     _show_state(sim)

@@ -1,6 +1,6 @@
 """ROS 1 (catkin) and ROS 2 (ament_python) packages around the generated supervisor.
 
-A package holds the per-robot module (:func:`robosc.runtime.module.render_module`),
+A package holds the per-robot module (:func:`robosc.codegen.module.render_module`),
 a verbatim copy of the runtime (:mod:`robosc.runtime.onboard`, as ``onboard/``), a
 node entry of a few lines, the package files and a launch file. :func:`ros_plan`
 checks that the model can run on ROS (interfaces, one type per topic) and works
@@ -13,15 +13,15 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from robosc.codegen.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
+from robosc.codegen.plan import Communication, Plan
 from robosc.codegen.templating import environment, markdown_cell
 from robosc.language.source import Span
 from robosc.record import record
-from robosc.runtime.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files, source_name
 from robosc.runtime.onboard import VERSION
 from robosc.runtime.onboard.messages import SENSOR_PACKAGE, wire_type
 from robosc.runtime.onboard.node import PARAMETERS, controller_side
 from robosc.runtime.onboard.supervisor import Communication as OnBoard
-from robosc.runtime.plan import Communication, Plan
 
 MODES = ("controller", "supervisor")
 ROS_TYPE = re.compile(r"^[A-Z][A-Za-z0-9]*$")  # a ROS message / service / action type name

@@ -17,7 +17,6 @@ from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
 from pygls.uris import from_fs_path, to_fs_path
 
-from robosc import __version__
 from robosc.editor.background import Synthesizer
 from robosc.editor.diagnostics import by_file, code_actions
 from robosc.editor.navigation import Index, RenameError, declarations
@@ -25,6 +24,7 @@ from robosc.editor.outline import folds, outline
 from robosc.editor.rename import error_codes
 from robosc.language.parser import gc_paused
 from robosc.language.reparse import Reparser
+from robosc.runtime.onboard import VERSION as __version__
 
 DEBOUNCE_SECONDS = 0.02  # a burst of keystrokes is checked once; short against the 100 ms target
 log = logging.getLogger(__name__)

@@ -19,9 +19,9 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from robosc.codegen.plan import Plan
 from robosc.codegen.ros import generate, package_name, ros_name
 from robosc.runtime.onboard.node import REPORT_PREFIX
-from robosc.runtime.plan import Plan
 from robosc.sim import session
 from robosc.sim.fleet import (
     DOOR_ANSWERS,

@@ -23,14 +23,14 @@ import types
 from collections.abc import Callable
 from typing import Any, TextIO
 
+from robosc.codegen.module import module_name, render_module
+from robosc.codegen.plan import Plan
 from robosc.language import model as m
 from robosc.language.diagnostics import closest
 from robosc.language.render import render
 from robosc.plant.network import Network, received_type
 from robosc.record import record
-from robosc.runtime.module import module_name, render_module
 from robosc.runtime.onboard.values import Data, plain
-from robosc.runtime.plan import Plan
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.explicit import Edges, marked, successors
 from robosc.synthesis.result import SynthesisResult

@@ -9,9 +9,9 @@ import re
 from importlib.resources import files
 from pathlib import Path
 
+from robosc.codegen.plan import Plan
 from robosc.codegen.templating import environment
 from robosc.runtime.onboard import VERSION
-from robosc.runtime.plan import Plan
 
 RUNTIME_PACKAGE = "onboard"  # the runtime's directory next to a generated module
 PLAN_PLACEHOLDER = "<plan>"  # replaced by the hash of the module's text
@@ -26,7 +26,7 @@ def module_name(plan: Plan) -> str:
 def render_module(plan: Plan, relative_names: bool = False) -> str:
     """The module's text; with ``relative_names``, the model's absolute ROS names are made
     relative (``/scan`` -> ``scan``), so that a namespace moves the whole robot."""
-    template = environment("robosc.runtime").get_template("supervisor.py.j2")
+    template = environment().get_template("supervisor.py.j2")
     names = {c.name: c.ros_name for c in plan.communications}
     if relative_names:
         names = {k: v.lstrip("/") if v.startswith("/") else v for k, v in names.items()}

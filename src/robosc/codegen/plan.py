@@ -4,10 +4,10 @@
 data -- field names, Python condition text, the lines of each event's effect --
 that ``templates/supervisor.py.j2`` places into the generated per-robot module.
 Nothing here is evaluated; every condition is Python source made by
-:mod:`robosc.runtime.pyexpr`. What every robot shares (the cycle, conversion,
+:mod:`robosc.codegen.pyexpr`. What every robot shares (the cycle, conversion,
 recording, ROS) is not generated: it is :mod:`robosc.runtime.onboard`.
 
-Generated identifiers come from one :class:`~robosc.runtime.pyexpr.Identifiers`
+Generated identifiers come from one :class:`~robosc.codegen.pyexpr.Identifiers`
 scheme: automata ``a<N>_<name>``, variables ``v<N>_<Component>_<name>``,
 controllable events ``e<N>_<event>``, uncontrollable ones ``u<N>_<event>``,
 provided data ``data<N>_<communication>`` / ``DATA<N>_<communication>``, enum
@@ -16,12 +16,12 @@ rules ``enum<N>_<Enum>``.
 
 from __future__ import annotations
 
+from robosc.codegen.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
 from robosc.language import model as m
 from robosc.language.source import Span
 from robosc.plant.domains import initial_value
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
 from robosc.record import record
-from robosc.runtime.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
 from robosc.synthesis.result import SynthesisResult
 
 K = EventKind
