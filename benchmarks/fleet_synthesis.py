@@ -61,14 +61,14 @@ checked = time.perf_counter()
 if method == "check":
     from robosc.plant import build_network
     from robosc.synthesis.symbolic import synthesize_monolithic
-    from robosc.synthesis.counted import synthesize_counted
+    from robosc.synthesis.counting.synthesis import synthesize_counted
     network = build_network(model)
     mono, fleet = synthesize_monolithic(network), synthesize_counted(network, least=2)
     if fleet.method != "symmetric":  # not counted: the same method twice, nothing to compare
-        print(json.dumps({"same": "n/a (not counted: " + str(fleet.details.get("symmetry"))[:40] + ")"}))
+        print(json.dumps({"same": "n/a (not counted: " + str(fleet.fleet)[:40] + ")"}))
         raise SystemExit(0)
     assert mono.ok == fleet.ok
-    fp = mono.details["fixpoint"]
+    fp = mono.fixpoint
     enc = fp.enc
     for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
         added = enc.boolean(theirs.added) if theirs.added is not None else enc.true
@@ -83,7 +83,7 @@ if method == "check":
     raise SystemExit(0)
 result = synthesize_model(model, options=SynthesisOptions(fleet=method))
 done = time.perf_counter()
-effort = result.details.get("effort") or {}
+effort = result.effort or {}
 from robosc.language.render import render
 condition = max((len(render(g.added)) for g in result.guards if g.added is not None), default=0)
 module = allowed_us = None

@@ -82,8 +82,8 @@ def reference(models: list[tuple[str, list[str]]], max_states: int) -> list[dict
     from faudes_oracle import libfaudes_supervisor, robosc_figures
     from robosc.api import check_text
     from robosc.plant import build_network
+    from robosc.synthesis.counting.groups import groups
     from robosc.synthesis.explicit import TooManyStates, synthesize_explicit
-    from robosc.synthesis.symmetry import groups
 
     found: list[dict[str, Any] | None] = []
     for text, _ in models:
@@ -93,7 +93,7 @@ def reference(models: list[tuple[str, list[str]]], max_states: int) -> list[dict
         except TooManyStates:
             found.append(None)
             continue
-        supervisor = explicit.details["supervisor"]
+        supervisor = explicit.supervisor
         reached = supervisor.controlled_states() if explicit.ok else []
         figures = robosc_figures(supervisor) if explicit.ok else (0, 0)
         assert figures == libfaudes_supervisor(explicit), text  # the reference is libFAUDES's too

@@ -38,7 +38,7 @@ def main() -> None:
     out = []
     for item in job:
         network = build_network(check_text(item["text"]).model)
-        plant = synthesize_explicit(network, 10**6).details["supervisor"]  # its states: the plant's
+        plant = synthesize_explicit(network, 10**6).supervisor  # its states: the plant's
         states = {key(network, s): s for s in plant.states}
         row = {}
         for method, synthesize in (("default", synthesize_symbolic), ("monolithic", synthesize_monolithic)):

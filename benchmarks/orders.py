@@ -43,7 +43,7 @@ order, _, edges = spec.partition("@")
 model = check_text(getattr(families, family)(n)).model
 network = build_network(model)
 if fleet == "counted":  # the order is that of the network synthesis works on: the counted one
-    from robosc.synthesis.symmetry import counted
+    from robosc.synthesis.counting.network import counted
     network = counted(network).network
 start = time.perf_counter()
 items = initial_order(network, order)
@@ -53,7 +53,7 @@ options = SynthesisOptions(order=order, fleet=fleet, edges=edges or "model", exp
 result = synthesize_model(model, options=options)
 done = time.perf_counter() - start
 print(json.dumps({"span": span, "order_s": ordered, "s": done, "states": result.reachable_states,
-    "mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **result.details["effort"]}))
+    "mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, **result.effort}))
 """
 
 

@@ -28,7 +28,7 @@ with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.St
 def libfaudes_supervisor(explicit) -> tuple[int, int]:
     """(states, transitions) of libFAUDES's supervisor (0, 0 when there is none) of the plant
     that ``explicit`` (an explicit synthesis' result) enumerated."""
-    enumerated = explicit.details["supervisor"]
+    enumerated = explicit.supervisor
     network = enumerated.network
     order = enumerated.states
     index = {state: i for i, state in enumerate(order)}

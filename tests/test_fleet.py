@@ -14,12 +14,12 @@ from robosc.api import check_text, format_text, synthesize_model
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant import build_network
-from robosc.synthesis.counted import synthesize_counted
+from robosc.synthesis.counting.network import counted, with_homes
+from robosc.synthesis.counting.synthesis import synthesize_counted
 from robosc.synthesis.explicit import synthesize_explicit
 from robosc.synthesis.options import SynthesisOptions
 from robosc.synthesis.restrictions import restriction
 from robosc.synthesis.symbolic import synthesize_monolithic
-from robosc.synthesis.symmetry import counted, with_homes
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "benchmarks"))
 import families
@@ -61,7 +61,7 @@ def test_instances_are_components_with_their_own_names_namespaces_and_start():
 def test_for_blocks_and_quantifiers_expand_per_instance():
     model = check_text(FLEET).model
     requirements = {r.communications[0].name: r.condition for r in model.requirements}
-    count = requirements["bot2.go"].left.left  # type: ignore[attr-defined]
+    count = requirements["bot2.go"].left.left
     assert [render(term) for term in count.terms] == ["bot1.busy", "bot2.busy", "bot3.busy"]  # one per instance
     # shown as written: a count over the group, and what 'any' expanded to for the others
     assert render(requirements["bot2.go"]) == "count(q in bot: q.busy) <= 1 and !bot1.busy and !bot3.busy"
@@ -126,11 +126,11 @@ def agree_with_monolithic(text: str, least: int = 2) -> tuple[object, object]:
     network = build_network(check_text(text).model)
     mono = synthesize_monolithic(network)
     fleet = synthesize_counted(network, least=least)
-    assert fleet.method == "symmetric", fleet.details.get("symmetry")
+    assert fleet.method == "symmetric", fleet.fleet
     assert mono.ok == fleet.ok
     if not mono.ok:
         return mono, fleet
-    fp = mono.details["fixpoint"]
+    fp = mono.fixpoint
     enc = fp.enc
     for mine, theirs in zip(mono.guards, fleet.guards, strict=True):
         assert mine.event is theirs.event
@@ -175,7 +175,7 @@ def test_counted_states_are_the_explicit_states_up_to_order(family: str):
     network = build_network(check_text(families.FLEETS[family](3)).model)
     explicit = synthesize_explicit(network)
     fleet = synthesize_counted(network, least=2)
-    assert fleet.reachable_states == counted_states(network, explicit.details["supervisor"])
+    assert fleet.reachable_states == counted_states(network, explicit.supervisor)
 
 
 DEADLOCK = """robot Cell {
@@ -208,7 +208,7 @@ def test_counted_synthesis_agrees_with_explicit_synthesis_state_by_state():
     network = build_network(check_text(DEADLOCK).model)
     explicit = synthesize_explicit(network)
     fleet = synthesize_counted(network, least=2)
-    supervisor = explicit.details["supervisor"]
+    supervisor = explicit.supervisor
     for state in supervisor.controlled_states():
         for event in network.events:
             assert fleet.allows(event, state) == supervisor.allows(event, state), event.name
@@ -218,7 +218,7 @@ def test_a_robot_treated_apart_is_synthesized_monolithically():
     text = FLEET.replace("requirement bot1.go needs Door.closed", "requirement bot1.go needs bot2.idle")
     result = synthesize_model(check_text(text).model, options=SynthesisOptions(fleet="counted"))
     assert result.method == "symbolic"
-    assert "monolithic" in result.details["symmetry"]
+    assert "monolithic" in result.fleet
 
 
 def test_the_default_counts_fleets_of_three_or_more():
@@ -473,7 +473,7 @@ def test_one_robot_singled_out_in_a_for_block_is_read_per_instance():
 
 def test_singled_out_one_robot_the_others_are_still_counted():
     _, fleet = agree_with_monolithic(SINGLED_OUT.format(n=5), least=3)
-    assert fleet.details["symmetry"].startswith("counted") and "4 agents" in fleet.details["symmetry"], fleet.details
+    assert fleet.fleet.startswith("counted") and "4 agents" in fleet.fleet, fleet.fleet
     assert explicit_agrees(SINGLED_OUT.format(n=4), least=3)
 
 
@@ -494,18 +494,18 @@ def explicit_agrees(text: str, least: int) -> bool:
     every state of the plant when it searches all states, in those the requirements reach when
     it searches those only (the default), holding in the others."""
     network = build_network(check_text(text).model)
-    supervisor = synthesize_explicit(network).details["supervisor"]
+    supervisor = synthesize_explicit(network).supervisor
     everywhere = synthesize_counted(network, SynthesisOptions(forward="never"), least=least)
     forward = synthesize_counted(network, least=least)
-    assert forward.method == everywhere.method == "symmetric", forward.details.get("symmetry")
+    assert forward.method == everywhere.method == "symmetric", forward.fleet
     reach = required_reach(supervisor)
     assert len(reach) < len(supervisor.states)  # some states only the plant reaches
     for state in supervisor.states:
         for event in network.events:
             expected = supervisor.allows(event, state)
-            assert everywhere.details["supervisor"].allows(event, state) == expected, event.name
-            assert forward.details["supervisor"].allows(event, state) == (expected and state in reach), event.name
-        assert forward.details["supervisor"].controlled(state) == (state in reach and state not in supervisor.bad)
+            assert everywhere.supervisor.allows(event, state) == expected, event.name
+            assert forward.supervisor.allows(event, state) == (expected and state in reach), event.name
+        assert forward.supervisor.controlled(state) == (state in reach and state not in supervisor.bad)
     return True
 
 
@@ -515,7 +515,7 @@ def test_why_a_fleet_is_not_counted_names_the_requirement():
     assert (
         "the requirements of 'bot2' differ from those of 'bot1' (requirement bot1.go needs !(bot2.top or bot3.top) "
         "has no counterpart for 'bot2')"
-    ) in fleet.details["symmetry"]
+    ) in fleet.fleet
 
 
 def test_an_instance_of_another_group_cannot_be_singled_out():
@@ -540,7 +540,7 @@ def test_two_arrays_of_alike_robots_are_two_kinds_counted_apart() -> None:
     from families import crossing
 
     _, fleet = agree_with_monolithic(crossing(6), least=3)
-    symmetry = fleet.details["symmetry"]  # type: ignore[attr-defined]
+    symmetry = fleet.fleet
     assert symmetry.startswith("counted (east: 3 agents") and "south: 3 agents" in symmetry
 
 
@@ -592,16 +592,16 @@ def test_a_quantifier_that_does_not_read_the_for_variable_is_resolved_once_for_t
     model = check_text(text.replace("component bot[3]", "component bot[500]")).model
     assert model is not None  # no limit met
     docks = [r.condition for r in model.requirements if r.communications[0].name.endswith(".dock")]
-    assert len(docks) == 500 and all(d.operand is docks[0].operand for d in docks)  # type: ignore[attr-defined]
+    assert len(docks) == 500 and all(d.operand is docks[0].operand for d in docks)
     # one that reads r is r's own: `(r.depot or r.ready) => ... any(...)`: the any is shared, the
     # whole is not
     gos = [r.condition for r in model.requirements if r.communications[0].name.endswith(".go")]
     depot = [
         g for g in gos
-        if isinstance(g.left, m.Binary) and isinstance(g.left.left, m.StateRef) and g.left.left.state.name == "depot"  # type: ignore[attr-defined]
+        if isinstance(g.left, m.Binary) and isinstance(g.left.left, m.StateRef) and g.left.left.state.name == "depot"
     ]
     first, second = depot[0], depot[1]
-    assert first is not second and first.right.right.operand is second.right.right.operand  # type: ignore[attr-defined]
+    assert first is not second and first.right.right.operand is second.right.right.operand
 
 
 HOME_NOTE = (
@@ -615,10 +615,10 @@ def test_robots_with_homes_of_their_own_are_counted_where_the_fleet_can_always_g
     """The ring where each robot must get back to its own start (copies by hand, each marked at
     its own zone): counted, with the monolithic method's supervisor, and synthesize says how."""
     _, fleet = agree_with_monolithic(families.ring_homes(n), least=3)
-    assert fleet.details["fleet_note"] == HOME_NOTE.format(last=n - 1)  # type: ignore[attr-defined]
-    assert "homes of their own" in fleet.details["symmetry"]  # type: ignore[attr-defined]
+    assert fleet.fleet_note == HOME_NOTE.format(last=n - 1)
+    assert "homes of their own" in fleet.fleet
     result = synthesize_model(check_text(families.ring_homes(n)).model)
-    assert (result.method, result.details["fleet_note"]) == ("symmetric", HOME_NOTE.format(last=n - 1))
+    assert (result.method, result.fleet_note) == ("symmetric", HOME_NOTE.format(last=n - 1))
 
 
 @pytest.mark.parametrize("family", ["ring", "ring_instances", "warehouse_instances"])
@@ -628,8 +628,8 @@ def test_copies_with_the_same_marked_states_are_counted_as_copies_not_as_robots_
     network = build_network(check_text(families.FLEETS[family](3)).model)
     assert not with_homes(network, 2)
     result = synthesize_counted(network)
-    assert result.method == "symmetric" and "fleet_note" not in result.details
-    assert "homes" not in result.details["symmetry"]
+    assert result.method == "symmetric" and result.fleet_note == ""
+    assert "homes" not in result.fleet
     assert with_homes(build_network(check_text(families.ring_homes(3)).model), 2)
 
 
@@ -638,7 +638,7 @@ def test_robots_with_homes_agree_with_explicit_synthesis_state_by_state() -> Non
     explicit = synthesize_explicit(network)
     fleet = synthesize_counted(network)
     assert fleet.method == "symmetric"
-    supervisor = explicit.details["supervisor"]
+    supervisor = explicit.supervisor
     for state in supervisor.controlled_states():
         assert [fleet.allows(e, state) for e in network.events] == [supervisor.allows(e, state) for e in network.events]
 
@@ -682,15 +682,15 @@ def test_robots_with_homes_that_need_a_supervisor_are_synthesized_monolithically
     network = build_network(check_text(HOMES_AND_A_DEAD_END).model)
     result = synthesize_counted(network)
     assert result.method == "symbolic"
-    assert result.details["fleet_note"] == (
+    assert result.fleet_note == (
         "R0 .. R2 are copies of each other, but synthesis did not count them: they differ in their marked states "
         "(each may rest in a place of its own), and counted, the fleet cannot always get back to where it started, "
         "so which robot is where matters; the supervisor is the monolithic method's (exact; slower on large fleets)"
     )
     explicit = synthesize_explicit(network)
-    start = next(iter(explicit.details["supervisor"].controlled_states()))
+    start = next(iter(explicit.supervisor.controlled_states()))
     assert [e.name for e in network.events if result.allows(e, start)] == ["go0"]
-    for state in explicit.details["supervisor"].controlled_states():
+    for state in explicit.supervisor.controlled_states():
         for event in network.events:
             assert result.allows(event, state) == explicit.allows(event, state), event.name
 
@@ -701,7 +701,7 @@ def test_robots_with_homes_that_do_not_start_home_are_synthesized_monolithically
     network = build_network(check_text(families.ring_of(3, [0, 1, 2], [1, 2, 0])).model)
     result = synthesize_counted(network)
     assert (result.method, result.ok) == ("symbolic", False)
-    assert "not every component starts in a marked state" in result.details["fleet_note"]
+    assert "not every component starts in a marked state" in result.fleet_note
 
 
 def test_the_generated_module_writes_each_long_condition_once_and_decides_as_before() -> None:
@@ -912,17 +912,17 @@ def test_robots_whose_requirements_are_the_first_robots_with_the_two_swapped_are
     first translates the first robot's only when the others' are its own with the two robots
     swapped (a fleet's requirements name every robot: translating each took 118 s for 500);
     a robot whose requirement differs in one place is still found out and translated."""
-    from robosc.synthesis import symmetry
+    from robosc.synthesis.counting import groups, translate
 
     translated: list[str] = []
-    about = symmetry.Translator.about
+    about = translate.Translator.about
 
     def counting(self: Any, e: m.Expr, me: Any, what: Any, span: Any = None) -> m.Expr:
         if me is not None:
             translated.append(me.component.name)
         return about(self, e, me, what, span)
 
-    monkeypatch.setattr(symmetry.Translator, "about", counting)
+    monkeypatch.setattr(translate.Translator, "about", counting)
     text = families.ring(4)
     counted(build_network(check_text(text).model))
     assert set(translated) == {"R0"}  # the three others swapped with R0 say the same
@@ -932,7 +932,7 @@ def test_robots_whose_requirements_are_the_first_robots_with_the_two_swapped_are
     changed = text.replace(line, line.replace("R3.moving0 or R3.moving1", "R3.moving0 or R3.at3", 1))
     assert changed != text
     translated.clear()
-    with pytest.raises(symmetry.NotSymmetric):
+    with pytest.raises(groups.NotSymmetric):
         counted(build_network(check_text(changed).model))
     assert "R2" in translated
 
@@ -946,10 +946,10 @@ def test_copies_that_cannot_be_counted_look_for_bad_states_where_the_requirement
     fleet = synthesize_counted(network)
     first = synthesize_monolithic(network, SynthesisOptions(forward="first"))
     everywhere = synthesize_monolithic(network)
-    assert "monolithic" in fleet.details["symmetry"]
-    assert fleet.details["effort"]["preimages"] == first.details["effort"]["preimages"]
-    assert first.details["effort"]["preimages"] < everywhere.details["effort"]["preimages"]
+    assert "monolithic" in fleet.fleet
+    assert fleet.effort["preimages"] == first.effort["preimages"]
+    assert first.effort["preimages"] < everywhere.effort["preimages"]
     assert fleet.reachable_states == everywhere.reachable_states
-    for state in synthesize_explicit(network).details["supervisor"].controlled_states():
+    for state in synthesize_explicit(network).supervisor.controlled_states():
         for event in network.events:
             assert fleet.allows(event, state) == everywhere.allows(event, state), event.name

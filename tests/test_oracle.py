@@ -20,7 +20,7 @@ from robosc.api import check_text
 from robosc.codegen import pyexpr
 from robosc.plant import build_network
 from robosc.synthesis.compare import compare
-from robosc.synthesis.counted import synthesize_counted
+from robosc.synthesis.counting.synthesis import synthesize_counted
 from robosc.synthesis.explicit import TooManyStates, synthesize_explicit
 from robosc.synthesis.methods import synthesize_symbolic
 from robosc.synthesis.symbolic import synthesize_monolithic
@@ -62,21 +62,21 @@ def oracle(text: str) -> collections.Counter[str]:
     default = synthesize_symbolic(network)
     pairs = synthesize_counted(network, least=2)
     results = [("default", default), ("monolithic", synthesize_monolithic(network))]
-    if pairs.details["symmetry"] != default.details["symmetry"]:  # else the same groups: the same computation
+    if pairs.fleet != default.fleet:  # else the same groups: the same computation
         results.append(("counting pairs", pairs))
     for name, result in results:
         comparison = compare(explicit, result)
         assert comparison.agree, (
-            f"{name} ({result.details.get('symmetry', result.method)}): {comparison.differences}\n{text}"
+            f"{name} ({result.fleet or result.method}): {comparison.differences}\n{text}"
         )
     expected = libfaudes_supervisor(explicit)
-    found = robosc_figures(explicit.details["supervisor"]) if explicit.ok else (0, 0)
+    found = robosc_figures(explicit.supervisor) if explicit.ok else (0, 0)
     assert found == expected, f"robosc {found}, libFAUDES {expected}\n{text}"
     return collections.Counter(
         {
             "counted (default)": default.method == "symmetric",
             "counted (pairs)": pairs.method == "symmetric",
-            "counted, homes of their own": "homes of their own" in str(pairs.details["symmetry"]),
+            "counted, homes of their own": "homes of their own" in str(pairs.fleet),
             "no supervisor": not explicit.ok,
         }
     )

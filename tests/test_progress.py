@@ -41,7 +41,7 @@ def test_a_watch_is_told_each_phase_in_order_and_every_step_with_the_same_superv
     assert set(order) <= set(PHASES)
     rounds = [p.round for p in seen if p.phase == "nonblocking"]
     assert rounds and rounds == sorted(rounds) and rounds[0] == 1
-    effort: dict[str, int] = watched.details["effort"]  # type: ignore[assignment]
+    effort: dict[str, int] = watched.effort  # type: ignore[assignment]
     assert seen[-1].steps == effort["images"] + effort["preimages"]  # every image and preimage
     assert all(a.steps <= b.steps and a.seconds <= b.seconds for a, b in itertools.pairwise(seen))
     assert all(p.live_nodes > 0 for p in seen if p.phase != "encoding")

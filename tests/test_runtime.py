@@ -157,7 +157,7 @@ def _agrees(text: str) -> None:
     module = load_module(p)
     _start_matches_the_network(module, p, network)
     sup = module.Robot(seed=0)
-    states = explicit.details["supervisor"].controlled_states()[:400]
+    states = explicit.supervisor.controlled_states()[:400]
     assert states
     for state in states:
         _load(state, p, sup, network)

@@ -36,7 +36,7 @@ def allowed(result, assignment: dict[str, str]) -> set[str]:
 
 def test_a_quantifier_over_other_robots_and_the_door_keeps_one_robot_busy_behind_the_closed_door():
     explicit, counted = checked("mixed_quantifier.rscd")
-    assert counted.method == "symmetric", counted.details["symmetry"]
+    assert counted.method == "symmetric", counted.fleet
     assert (explicit.reachable_states, counted.reachable_states) == (12, 6)
     # one robot busy behind the closed door: no other may go (it could never come back)
     assert allowed(counted, {"bot1": "busy"}) == {"bot1.back", "close"} - {"close"}
@@ -45,7 +45,7 @@ def test_a_quantifier_over_other_robots_and_the_door_keeps_one_robot_busy_behind
 
 def test_a_count_with_two_terms_for_each_robot_counts_terms_not_robots():
     explicit, counted = checked("weighted_count.rscd")
-    assert counted.method == "symmetric", counted.details["symmetry"]
+    assert counted.method == "symmetric", counted.fleet
     # the script: bot1.go, then bot2.go would let both load (4 units) and block both
     assert "bot2.go" not in allowed(counted, {"bot1": "away"})
     assert "bot2.go" not in allowed(counted, {"bot1": "heavy"})
@@ -55,7 +55,7 @@ def test_a_count_with_two_terms_for_each_robot_counts_terms_not_robots():
 
 def test_a_fleets_event_with_two_outcomes_is_allowed_only_where_both_are_good():
     explicit, counted = checked("two_outcomes_fleet.rscd")
-    assert counted.method == "symmetric", counted.details["symmetry"]
+    assert counted.method == "symmetric", counted.fleet
     assert (explicit.reachable_states, counted.reachable_states) == (1, 1)
     assert allowed(counted, {}) == set()
     messages = [d.message for d in synthesis_warnings(counted)]
@@ -108,7 +108,7 @@ def test_the_simulators_lookahead_finds_the_deadlock_a_supervisor_without_the_ad
         result.method,
         True,
         tuple(EventGuard(g.event, g.required, None) for g in result.guards),
-        details={"supervisor": Trusting()},
+        supervisor=Trusting(),
     )
     two_busy = result.state({"bot1": "busy", "bot2": "busy"})
     assert Lookahead(without).reaches_marked(two_busy) is False

@@ -69,7 +69,7 @@ def test_small_factory_agrees_with_explicit_synthesis():
     symbolic, explicit = synthesize(network), synthesize_explicit(network)
     assert symbolic.ok and explicit.ok
     assert symbolic.reachable_states == explicit.reachable_states
-    supervisor = explicit.details["supervisor"]
+    supervisor = explicit.supervisor
     for state in supervisor.states:
         for event in network.events:
             assert symbolic.allows(event, state) == explicit.allows(event, state)
@@ -185,7 +185,7 @@ def test_dining_philosophers_guards_prevent_the_deadlock(n: int):
     symbolic, explicit = synthesize(network), synthesize_explicit(network)
     assert symbolic.ok and symbolic.reachable_states == explicit.reachable_states
     assert {g.event.name for g in symbolic.added_guards} == {f"take_left{i}" for i in range(n)}
-    assert_readable_guards_are_exact(symbolic, explicit.details["supervisor"])
+    assert_readable_guards_are_exact(symbolic, explicit.supervisor)
     if n == 3:
         assert render(symbolic.guard("take_left1").added) == "P0.thinking or P2.thinking"
 
@@ -524,7 +524,7 @@ def test_synthesis_options_never_change_the_supervisor(order: str, reorder: bool
         # the same events allowed in the same states (an added condition may be written
         # differently: its shortest form depends on the variable order)
         net = default.network
-        for state in synthesize_explicit(net).details["supervisor"].controlled_states():
+        for state in synthesize_explicit(net).supervisor.controlled_states():
             named = {a.name: loc.name for a, loc in zip(net.automata, state.locations, strict=True)}
             named.update({f"{v.owner}.{v.name}": x for v, x in zip(net.variables, state.values, strict=True)})
             there = tuned.state(named)  # the same state in the tuned run's network

@@ -22,7 +22,7 @@ def test_symbolic_and_explicit_synthesis_agree(text: str) -> None:
     explicit = synthesize_explicit(network)
     assert symbolic.ok == explicit.ok, text
     assert symbolic.reachable_states == explicit.reachable_states, text
-    supervisor = explicit.details["supervisor"]
+    supervisor = explicit.supervisor
     for state in supervisor.states:
         for event in network.events:
             assert symbolic.allows(event, state) == explicit.allows(event, state), (event.name, state, text)

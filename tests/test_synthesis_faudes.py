@@ -166,7 +166,7 @@ def robosc_supervisor(network: Network, supervisor: Any = None) -> tuple[int, in
     """robosc's explicit supervisor's size as libFAUDES counts it: states, transitions
     (``supervisor``: the explicit supervisor, where it is synthesized already)."""
     if supervisor is None:
-        supervisor = synthesize_explicit(network).details["supervisor"]
+        supervisor = synthesize_explicit(network).supervisor
     reachable = supervisor.controlled_states()
     transitions = sum(1 for s in reachable for e, _ in supervisor.transitions[s] if supervisor.allows(e, s))
     return len(reachable), transitions
@@ -215,13 +215,13 @@ def test_fleets_match_libfaudes(family: str, n: int) -> None:
     explicit and the monolithic supervisors are libFAUDES's; the counted one allows the same
     events in every state libFAUDES's reaches."""
     import families
-    from robosc.synthesis.counted import synthesize_counted
+    from robosc.synthesis.counting.synthesis import synthesize_counted
     from robosc.synthesis.symbolic import synthesize_monolithic
 
     network = build_network(check_text(families.FLEETS[family](n)).model)
     expected = faudes_supervisor(network)
     assert expected is not None and expected[0] > 0
-    explicit = synthesize_explicit(network).details["supervisor"]  # once (11 s for the ring of 4)
+    explicit = synthesize_explicit(network).supervisor  # once (11 s for the ring of 4)
     assert robosc_supervisor(network, explicit) == expected
     assert synthesize_monolithic(network).reachable_states == expected[0]
     fleet = synthesize_counted(network, least=2)

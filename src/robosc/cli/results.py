@@ -62,8 +62,8 @@ def as_json(result: SynthesisResult, warnings: list[Diagnostic] | None = None) -
         "ok": result.ok,
         "method": result.method,
         "reachable_states": result.reachable_states if result.ok else None,
-        "fleet": result.details.get("symmetry"),
-        "fleet_note": result.details.get("fleet_note"),
+        "fleet": result.fleet or None,
+        "fleet_note": result.fleet_note or None,
         "seconds": round(result.seconds, 6),
         "events": [
             {
@@ -152,7 +152,7 @@ def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Co
 
 
 def _print_fleet_note(result: SynthesisResult, show: Any) -> None:
-    note = result.details.get("fleet_note")
+    note = result.fleet_note
     if note:
         show(f"note: {note}", "      ")
 
@@ -162,7 +162,7 @@ def _print_cross_check(
 ) -> None:
     """Explicit-state synthesis computes the supervisor's states, not conditions per event: it
     is a cross-check of the symbolic method, and says so with the figures it compares."""
-    plant = result.details.get("plant_states")
+    plant = result.plant_states
     show(
         f"explicit-state synthesis of {result.network.model.name} (a cross-check of the symbolic method; "
         "it computes states, not conditions per event):",
@@ -178,7 +178,7 @@ def _print_cross_check(
     symbolic, comparison = cross_check
     if not symbolic.ok:
         found = "no supervisor"
-    elif "counted" in symbolic.details:
+    elif symbolic.method == "symmetric":
         found = (
             f"{symbolic.reachable_states} reachable states counted (robots in the same states, in any order, "
             f"count once; explicit: {comparison.reference_states} counted so)"

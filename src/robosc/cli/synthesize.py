@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import click
 
 from robosc.api import cross_check, synthesize_model
@@ -138,7 +136,7 @@ def synthesize(
 
         data = as_json(result, warnings)
         if stats:
-            data["effort"] = result.details.get("effort")
+            data["effort"] = dict(result.effort) if result.effort is not None else None
         if comparison is not None:
             data["cross_check"] = {
                 "method": symbolic.method,
@@ -151,12 +149,12 @@ def synthesize(
         click.echo(json.dumps(data, indent=2))
     else:
         print_result(result, (symbolic, comparison) if comparison is not None else None)
-        effort: Any = result.details.get("effort")
+        effort = result.effort
         if stats and effort is not None:
             say(
                 f"effort: {effort['peak_live_nodes']:,} peak live BDD nodes, {effort['images']:,} images, "
                 f"{effort['preimages']:,} preimages, {effort['variables']} state bits; "
-                f"{result.details.get('symmetry', 'monolithic')}; "
+                f"{result.fleet or 'monolithic'}; "
                 f"{result.seconds * 1000:.1f} ms"
             )
         print_warnings(warnings)

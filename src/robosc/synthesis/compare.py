@@ -9,9 +9,9 @@ the figures are compared.
 
 from __future__ import annotations
 
-from typing import Any
-
 from robosc.record import record
+from robosc.synthesis.counting.supervisor import CountedSupervisor
+from robosc.synthesis.explicit import ExplicitSupervisor
 from robosc.synthesis.result import SynthesisResult
 from robosc.synthesis.state import describe
 
@@ -35,10 +35,11 @@ class Comparison:
 def compare(reference: SynthesisResult, other: SynthesisResult, limit: int = 5) -> Comparison:
     """``reference`` (explicit) against ``other`` on every state the reference's supervisor
     reaches: the same decision for every event, and as many controlled states."""
-    supervisor: Any = reference.details["supervisor"]
+    supervisor = reference.supervisor
+    assert isinstance(supervisor, ExplicitSupervisor), "the reference is explicit synthesis"
     reached = supervisor.controlled_states() if reference.ok else []
-    counted: Any = other.details.get("supervisor") if "counted" in other.details else None
-    states = len({counted.key(s) for s in reached}) if counted is not None else len(reached)
+    counted = other.supervisor
+    states = len({counted.key(s) for s in reached}) if isinstance(counted, CountedSupervisor) else len(reached)
     differences: list[str] = []
     if reference.ok != other.ok:
         found = {True: "a supervisor", False: "none"}

@@ -123,6 +123,10 @@ class ExplicitSupervisor:
             self.allowed[state] = found
         return found
 
+    def controlled(self, state: NetworkState) -> bool:
+        """Whether ``state`` is inside the controlled behaviour (not bad)."""
+        return state not in self.bad
+
     def controlled_states(self) -> list[NetworkState]:
         """The states reachable under the supervisor, in breadth-first order."""
         start = self.states[0]
@@ -211,5 +215,6 @@ def synthesize_explicit(network: Network, max_states: int | None = None) -> Synt
         init not in bad,
         reachable_states=len(reachable),
         seconds=time.perf_counter() - start,
-        details={"supervisor": supervisor, "plant_states": len(order)},
+        supervisor=supervisor,
+        plant_states=len(order),
     )

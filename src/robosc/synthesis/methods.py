@@ -1,6 +1,6 @@
 """Synthesis's one entry: the symbolic method picks how to synthesize a network from its
 options (robosc.synthesis.options.FLEETS): a fleet's robots counted where they can be
-(robosc.synthesis.counted), one BDD of the whole state otherwise (robosc.synthesis.symbolic).
+(robosc.synthesis.counting), one BDD of the whole state otherwise (robosc.synthesis.symbolic).
 Whatever it picks, the supervisor is the same (tests/test_oracle.py checks it)."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from robosc.plant.network import Network
-from robosc.synthesis.counted import synthesize_counted
+from robosc.synthesis.counting.synthesis import synthesize_counted
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Progress, Watch
 from robosc.synthesis.result import SynthesisResult

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import Protocol
 
 from robosc.language import model as m
 from robosc.language.source import Span
 from robosc.plant.network import Event, Network
 from robosc.record import field, record
+from robosc.synthesis.fixpoint import Fixpoint
 from robosc.synthesis.state import NetworkState
 
 
@@ -78,16 +79,45 @@ class Restriction:
     note: str = ""  # a counted fleet's: that its robots are restricted alike, and for which robot the run is told
 
 
+class Supervisor(Protocol):
+    """What the supervisor of every method answers about a state of the network it was
+    synthesized for (:class:`~robosc.synthesis.fixpoint.Fixpoint` for the monolithic method,
+    ``CountedSupervisor`` for a counted fleet, ``ExplicitSupervisor`` for the explicit one)."""
+
+    def allows(self, event: Event, state: NetworkState) -> bool: ...
+
+    def allowed_events(self, state: NetworkState) -> frozenset[Event]: ...
+
+    def controlled(self, state: NetworkState) -> bool: ...
+
+
 @record
 class SynthesisResult:
+    """What one synthesis found. ``method``: "symbolic" (monolithic BDDs), "symmetric" (a
+    fleet's copies counted) or "explicit" (every state listed, a cross-check).
+
+    ``supervisor`` answers for concrete states (:meth:`allows`, :meth:`allowed_events`,
+    :meth:`controlled`); ``fixpoint`` holds the BDDs of a symbolic run (of the counted network
+    where ``method`` is "symmetric"; None for the explicit method), from which explanations and
+    warnings are made on request (robosc.synthesis.restrictions, robosc.synthesis.warnings).
+    ``fleet`` says how a fleet's copies were synthesized ("counted (...)" or "monolithic: why";
+    empty where synthesis did not look for copies), ``fleet_note`` what a user of the fleet
+    should know of it; ``effort`` the BDD library's machine-independent figures;
+    ``plant_states`` the explicit method's count of the uncontrolled plant's states."""
+
     network: Network
-    method: str  # "symbolic" or "explicit"
+    method: str  # "symbolic", "symmetric" or "explicit"
     ok: bool
     guards: tuple[EventGuard, ...] = ()
     reachable_states: int = 0
     seconds: float = 0.0
     explanation: Explanation | None = None
-    details: dict[str, object] = field(default_factory=dict, repr=False)
+    supervisor: Supervisor | None = field(default=None, repr=False, compare=False)
+    fixpoint: Fixpoint | None = field(default=None, repr=False, compare=False)
+    fleet: str = ""
+    fleet_note: str = ""
+    effort: Mapping[str, int] | None = field(default=None, compare=False)
+    plant_states: int = 0
 
     def guard(self, name: str) -> EventGuard:
         return next(g for g in self.guards if g.event.name == name)
@@ -131,21 +161,18 @@ class SynthesisResult:
     def allows(self, event: Event | str, state: NetworkState) -> bool:
         """Whether the supervisor lets ``event`` happen in ``state`` (of :attr:`network`)."""
         found = self.network.event(event) if isinstance(event, str) else event
-        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
-        assert supervisor is not None
-        return bool(supervisor.allows(found, state))
+        return self._supervisor().allows(found, state)
 
     def allowed_events(self, state: NetworkState) -> frozenset[Event]:
         """The events the supervisor lets happen in ``state``: those :meth:`allows` says yes to."""
-        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
-        assert supervisor is not None
-        return frozenset(supervisor.allowed_events(state))
+        return self._supervisor().allowed_events(state)
 
     def controlled(self, state: NetworkState) -> bool:
         """Whether ``state`` lies inside the controlled behaviour (every requirement can be
         kept from it and a marked state stays reachable)."""
-        supervisor: Any = self.details.get("fixpoint") or self.details.get("supervisor")
-        assert supervisor is not None
-        if hasattr(supervisor, "controlled"):
-            return bool(supervisor.controlled(state))
-        return state not in supervisor.bad
+        return self._supervisor().controlled(state)
+
+    def _supervisor(self) -> Supervisor:
+        if self.supervisor is None:
+            raise ValueError(f"this {self.method} result holds no supervisor to ask")
+        return self.supervisor

@@ -12,99 +12,19 @@ the plant allows it, its requirements hold, and none of its successors is bad.
 from __future__ import annotations
 
 import time
-from typing import Any
 
 from robosc.language import model as m
 from robosc.plant.expressions import all_of
 from robosc.plant.network import Event, Network
-from robosc.record import field, record
-from robosc.synthesis.cases import Case, Unions, requirement_cases, union
+from robosc.synthesis.cases import Unions, requirement_cases
 from robosc.synthesis.encoding import BDD, Encoding, Relation
 from robosc.synthesis.explain import explain
 from robosc.synthesis.fixedpoints import edge_order, within
+from robosc.synthesis.fixpoint import Fixpoint
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Watch
-from robosc.synthesis.readable import readable
 from robosc.synthesis.relations import event_relation
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.state import NetworkState, describe
-
-
-@record(frozen=False)
-class Fixpoint:
-    """The BDDs of one synthesis run, kept for questions asked afterwards."""
-
-    enc: Encoding
-    relation: dict[Event, Relation]
-    cases: dict[Event, tuple[Case, ...]]  # each event's requirements by where its automaton is
-    required: Unions  # where the requirements allow each event, among the states where it can happen
-    enabled: dict[Event, BDD]
-    initial: BDD
-    marked: BDD
-    requirement_bad: BDD
-    bad: BDD  # among the considered states
-    considered: BDD  # the states synthesis decided on: every valid one, or those the requirements reach
-    allowed: Unions  # controllable events: where the supervisor allows them (a part per case)
-    reachable: BDD
-    memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
-    describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
-
-    def describe(self, state: NetworkState) -> str:
-        """``state`` in words, for explanations."""
-        if self.describer is not None:
-            return str(self.describer(state))
-        return describe(self.enc.network, state)
-
-    def allows(self, event: Event, state: NetworkState) -> bool:
-        """Whether ``event`` can happen in ``state`` under the supervisor."""
-        return self.allows_in(event, self.state(state))
-
-    def allowed_events(self, state: NetworkState) -> frozenset[Event]:
-        """The events the supervisor lets happen in ``state`` (:meth:`allows` for each, the state
-        encoded once)."""
-        here = self.state(state)
-        return frozenset(e for e in self.enc.network.events if self.allows_in(e, here))
-
-    def allows_in(self, event: Event, states: BDD) -> bool:
-        """Whether ``event`` can happen in one of ``states`` (a controllable one asked case by
-        case, without making the union of where it is allowed)."""
-        if event.controllable:
-            return self.allowed.meets(event, states)
-        return bool((states & self.where(event)) != self.enc.false)
-
-    def where(self, event: Event) -> BDD:
-        """The states where the supervisor lets ``event`` happen."""
-        return self.allowed[event] if event.controllable else self.enabled[event] & self.good
-
-    @property
-    def good(self) -> BDD:
-        """The considered states that are not bad."""
-        return self.considered & ~self.bad
-
-    def added(self, event: Event) -> m.Expr | None:
-        """The condition synthesis adds to ``event`` beyond its requirements, written over the
-        states where the controlled system can do it (None where it adds none)."""
-        enc = self.enc
-        where = self.reachable & self.enabled[event]
-        care = union([where & part for part in self.required.parts[event]])  # without the union of the parts
-        beyond = ~enc.pre(self.relation[event], self.bad)
-        return readable(enc, beyond, care) if (care & ~beyond) != enc.false else None
-
-    def controlled(self, state: NetworkState) -> bool:
-        """Whether ``state`` is inside the controlled behaviour: no requirement can be
-        forced to break from it and a marked state stays reachable (where synthesis looked only
-        at the states the requirements reach, those it did not look at are outside)."""
-        return self.controlled_in(self.state(state))
-
-    def controlled_in(self, states: BDD) -> bool:
-        """Whether ``states`` (one state, encoded) lies in the controlled behaviour."""
-        return bool((states & self.good) != self.enc.false)
-
-    def state(self, state: NetworkState) -> BDD:
-        network = self.enc.network
-        locations = dict(zip(network.automata, state.locations, strict=True))
-        values = dict(zip(network.variables, state.values, strict=True))
-        return self.enc.state(locations, values)
 
 
 def fixpoint(
@@ -268,7 +188,9 @@ def synthesize_monolithic(
             False,
             explanation=explanation,
             seconds=seconds,
-            details={"fixpoint": fp, "effort": enc.effort()},
+            supervisor=fp,
+            fixpoint=fp,
+            effort=enc.effort(),
         )
     watch.phase("conditions")
     guards = []
@@ -276,7 +198,6 @@ def synthesize_monolithic(
         conditions = [r.condition for r in network.requirements_on(event)]
         required: m.Expr | None = all_of(conditions) if conditions else None
         guards.append(EventGuard(event, required, fp.added(event)))
-    details: dict[str, Any] = {"fixpoint": fp, "effort": enc.effort()}
     return SynthesisResult(
         network,
         "symbolic",
@@ -284,5 +205,7 @@ def synthesize_monolithic(
         tuple(guards),
         enc.count(fp.reachable),
         time.perf_counter() - start,
-        details=details,
+        supervisor=fp,
+        fixpoint=fp,
+        effort=enc.effort(),
     )

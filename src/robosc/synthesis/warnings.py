@@ -13,10 +13,12 @@ from robosc.language.diagnostics import Diagnostic, warning
 from robosc.language.render import render
 from robosc.language.source import Span
 from robosc.plant.network import AutomatonKind, Event, Network, Requirement
+from robosc.synthesis.counting.groups import robots_of
+from robosc.synthesis.counting.supervisor import CountedSupervisor
+from robosc.synthesis.counting.translate import at_least
 from robosc.synthesis.fixedpoints import reach
 from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Restriction, SynthesisResult
-from robosc.synthesis.symmetry import CountedSupervisor, at_least, robots_of
 
 
 def event_span(event: Event) -> Span | None:
@@ -103,9 +105,9 @@ def never_allowed(result: SynthesisResult) -> list[Diagnostic]:
 
 
 def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
-    fixpoint: Any = result.details.get("fixpoint")
-    if result.ok and fixpoint is None and result.details.get("counted") is not None:
-        return counted_warnings(result)
+    fixpoint = result.fixpoint
+    if result.ok and isinstance(result.supervisor, CountedSupervisor):
+        return counted_warnings(result, result.supervisor)
     if not result.ok or fixpoint is None:
         return []
     enc = fixpoint.enc
@@ -132,13 +134,12 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     return found
 
 
-def counted_warnings(result: SynthesisResult) -> list[Any]:
+def counted_warnings(result: SynthesisResult, supervisor: CountedSupervisor) -> list[Diagnostic]:
     """The warnings of :func:`robosc.synthesis.warnings.synthesis_warnings` from a counted
     synthesis: a requirement that never holds in a reachable state, a state no robot of a group
     reaches (named for the group's robots), and a controllable event it never allows (from
-    the explanations of :mod:`robosc.synthesis.fleet_why`)."""
-    fp: Any = result.details["counted"]
-    supervisor: CountedSupervisor = result.details["supervisor"]  # type: ignore[assignment]
+    the explanations of :mod:`robosc.synthesis.counting.explain`)."""
+    fp = supervisor.fp
     fleet, enc = supervisor.fleet, fp.enc
     reachable = fp.reachable
 

@@ -1,4 +1,4 @@
-"""Explanations on a counted fleet (:mod:`robosc.synthesis.symmetry`), naming its robots.
+"""Explanations on a counted fleet (:mod:`robosc.synthesis.counting`), naming its robots.
 
 Synthesis on a counted fleet knows how many robots are in each local state, not which. An
 explanation is found on the counted network as on any network (:mod:`robosc.synthesis.why`:
@@ -17,12 +17,14 @@ from typing import Any
 
 from robosc.language.render import literal
 from robosc.plant.network import Event, Network, Requirement
+from robosc.synthesis.counting.groups import Agent, Group
+from robosc.synthesis.counting.moves import start_of
+from robosc.synthesis.counting.supervisor import CountedSupervisor
 from robosc.synthesis.evaluate import Undefined, evaluate
 from robosc.synthesis.explain import Probe, blocking, breaking, cut_way, cut_words, fixes, likeliest, ways_out
 from robosc.synthesis.explicit import Edges, successors
 from robosc.synthesis.result import Explanation, Fix, Restriction, Step
 from robosc.synthesis.state import NetworkState, describe, describe_parts
-from robosc.synthesis.symmetry import Agent, CountedSupervisor, Group, start_of
 from robosc.synthesis.why import Reasons, reasons
 
 
@@ -160,13 +162,12 @@ def counted_reasons(fp: Any, candidates: list[Event]) -> list[Reasons]:
     return found
 
 
-def counted_why(result: Any, event: Event) -> Restriction | None:
+def counted_why(supervisor: CountedSupervisor, event: Event) -> Restriction | None:
     """Why the supervisor of a counted fleet disables ``event`` (of the fleet's network)
     somewhere its plant and requirements allow it, with the fleet's robots named; None when it
     never does. When the robot of ``event`` cannot be the one restricted in that run (robots
     that start elsewhere), the run is shown for the robot that is, and the restriction says so."""
-    supervisor: CountedSupervisor = result.details["supervisor"]
-    fp = result.details["counted"]
+    fp = supervisor.fp
     candidates = [c for c in supervisor.counted_of(event) if c in fp.allowed]
     found = counted_reasons(fp, candidates)
     if not found:

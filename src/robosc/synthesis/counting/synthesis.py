@@ -1,34 +1,27 @@
-"""Synthesis of a fleet by counting its robots (robosc.synthesis.symmetry finds the copies and
-builds the counted network): the same fixed point as any network (robosc.synthesis.symbolic),
+"""Synthesis of a fleet by counting its robots (the wing's other modules find the copies and
+build the counted network): the same fixed point as any network (robosc.synthesis.symbolic),
 its conditions read back in the fleet's terms; the monolithic method where the fleet cannot
 be counted, saying why."""
 
 from __future__ import annotations
 
 import time
-from typing import Any
 
 from robosc.language import model as m
 from robosc.language.render import render
 from robosc.plant.expressions import NO_SPAN, all_of, any_of
 from robosc.plant.network import Event, Network
+from robosc.synthesis.counting.explain import describer
+from robosc.synthesis.counting.groups import MIN_AGENTS, NotSymmetric, robots_of
+from robosc.synthesis.counting.network import Counted, counted, with_homes
+from robosc.synthesis.counting.supervisor import CountedSupervisor, lift
+from robosc.synthesis.counting.translate import rename_back
 from robosc.synthesis.explain import explain
-from robosc.synthesis.fleet_why import describer
+from robosc.synthesis.fixpoint import Fixpoint
 from robosc.synthesis.options import DEFAULT, SynthesisOptions
 from robosc.synthesis.progress import Watch
 from robosc.synthesis.result import EventGuard, SynthesisResult
-from robosc.synthesis.symbolic import Fixpoint, fixpoint, synthesize_monolithic
-from robosc.synthesis.symmetry import (
-    MIN_AGENTS,
-    Counted,
-    CountedSupervisor,
-    NotSymmetric,
-    counted,
-    lift,
-    rename_back,
-    robots_of,
-    with_homes,
-)
+from robosc.synthesis.symbolic import fixpoint, synthesize_monolithic
 
 
 def synthesize_counted(
@@ -36,8 +29,8 @@ def synthesize_counted(
 ) -> SynthesisResult:
     """Synthesis by the counter abstraction where the network has a group of at least ``least``
     symmetric agents (or agents that are copies but for their homes, where
-    :func:`synthesize_homes` applies); the monolithic method (saying why in
-    ``details["symmetry"]``) where not. ``watch``: told how far it is."""
+    :func:`synthesize_homes` applies); the monolithic method (saying why in the result's
+    ``fleet``) where not. ``watch``: told how far it is."""
     options = options or DEFAULT
     watch = watch if watch is not None else Watch.quiet()
     start = time.perf_counter()
@@ -52,12 +45,12 @@ def synthesize_counted(
     except NotSymmetric as reason:
         why = homes_why if reason.homes and homes_why else str(reason)
         result = synthesize_monolithic(network, options, watch, fleet=bool(reason.robots))
-        fallback: dict[str, Any] = dict(result.details, symmetry=f"monolithic: {why}")
-        if reason.robots:  # a fleet: say why it was not counted
-            fallback["fleet_note"] = (
-                f"{reason.robots} are copies of each other, but synthesis did not count them: {why}; "
-                "the supervisor is the monolithic method's (exact; slower on large fleets)"
-            )
+        note = (  # a fleet: say why it was not counted
+            f"{reason.robots} are copies of each other, but synthesis did not count them: {why}; "
+            "the supervisor is the monolithic method's (exact; slower on large fleets)"
+            if reason.robots
+            else ""
+        )
         return SynthesisResult(
             result.network,
             result.method,
@@ -66,7 +59,11 @@ def synthesize_counted(
             result.reachable_states,
             time.perf_counter() - start,
             result.explanation,
-            fallback,
+            result.supervisor,
+            result.fixpoint,
+            fleet=f"monolithic: {why}",
+            fleet_note=note,
+            effort=result.effort,
         )
     fp = fixpoint(fleet.network, options, watch)
     return _counted_result(network, fleet, fp, watch, start)
@@ -117,24 +114,26 @@ def synthesize_homes(
 
 
 def _counted_result(
-    network: Network, fleet: Counted, fp: Fixpoint, watch: Watch, start: float, note: str | None = None
+    network: Network, fleet: Counted, fp: Fixpoint, watch: Watch, start: float, note: str = ""
 ) -> SynthesisResult:
     """The supervisor a counted synthesis found (``note``: what the fleet should know of how)."""
     enc = fp.enc
     described = ", ".join(f"{g.name}: {len(g.agents)} agents, {len(g.local)} local states" for g in fleet.groups)
     supervisor = CountedSupervisor(network, fleet, fp)
     fp.describer = describer(supervisor)
-    details: dict[str, Any] = {
-        "counted": fp,
-        "effort": enc.effort(),
-        "symmetry": f"counted ({described})" + ("; homes of their own, every state gets back to the start" if note else ""),
-        "supervisor": supervisor,
-    }
-    if note is not None:
-        details["fleet_note"] = note
+    how = f"counted ({described})" + ("; homes of their own, every state gets back to the start" if note else "")
     if (fp.initial & fp.bad) != enc.false:
         return SynthesisResult(
-            network, "symmetric", False, explanation=explain(fp), seconds=time.perf_counter() - start, details=details
+            network,
+            "symmetric",
+            False,
+            seconds=time.perf_counter() - start,
+            explanation=explain(fp),
+            supervisor=supervisor,
+            fixpoint=fp,
+            fleet=how,
+            fleet_note=note,
+            effort=enc.effort(),
         )
     translator = fleet.translator
     watch.phase("conditions")
@@ -180,5 +179,9 @@ def _counted_result(
         tuple(guards),
         enc.count(fp.reachable),
         time.perf_counter() - start,
-        details=details,
+        supervisor=supervisor,
+        fixpoint=fp,
+        fleet=how,
+        fleet_note=note,
+        effort=enc.effort(),
     )
