@@ -1,12 +1,14 @@
 """The shape of the source tree (docs/architecture.md): the stages import downwards only, no
 modules import each other in a circle, the runtime copied onto robots uses the standard library
-alone."""
+alone, and no module or runtime class grows past the sizes a reader can hold."""
 
 from __future__ import annotations
 
 import ast
 import sys
 from pathlib import Path
+
+import pytest
 
 SRC = Path(__file__).resolve().parent.parent / "src"
 PACKAGE = SRC / "robosc"
@@ -26,6 +28,8 @@ FLOORS = (
     ("cli", "__main__", "__init__"),
 )
 GENERATED = {"robosc.language.grammar_tables"}  # the grammar's parse tables, written by a program
+MODULE_LINES = 800
+ONBOARD_CLASS_LINES = 400
 
 
 def module_names() -> dict[str, Path]:
@@ -154,3 +158,17 @@ def test_the_runtime_copied_onto_robots_uses_the_standard_library_only() -> None
                 messages = top.endswith("_msgs") or top.endswith("_srvs")
                 assert top in sys.stdlib_module_names or middleware or messages, f"{path.name} imports {imported}"
                 assert not imported.startswith("robosc"), f"{path.name} imports {imported}: use a relative import"
+
+
+@pytest.mark.parametrize("name", sorted(set(module_names()) - GENERATED))
+def test_no_module_is_longer_than_a_reader_can_hold(name: str) -> None:
+    lines = len(module_names()[name].read_text(encoding="utf-8").splitlines())
+    assert lines <= MODULE_LINES, f"{name}: {lines} lines"
+
+
+def test_no_class_of_the_onboard_runtime_is_longer_than_a_reader_can_hold() -> None:
+    for path in sorted((PACKAGE / "runtime" / "onboard").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef):
+                length = (node.end_lineno or node.lineno) - node.lineno + 1
+                assert length <= ONBOARD_CLASS_LINES, f"{path.name}: class {node.name} has {length} lines"

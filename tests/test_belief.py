@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from robosc.api import load_model, plan_supervisor, synthesize_model
 from robosc.debug.eventlog import read_log
 from robosc.debug.simulator import load_module
-from robosc.runtime.onboard.belief import Unknown
+from robosc.runtime.onboard.unknown import Unknown
 from robosc.runtime.onboard.values import Data
 from test_onboard import FakeNode, Float32
 

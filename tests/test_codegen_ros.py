@@ -31,18 +31,28 @@ def depends(package: Path) -> set[str]:
 
 RUNTIME = {
     "__init__.py",
+    "answers.py",
     "belief.py",
     "delivery.py",
+    "effects.py",
     "fastdds.xml",
+    "health.py",
+    "layer.py",
     "live_server.py",
     "messages.py",
     "node.py",
+    "node_base.py",
     "profiles.py",
+    "reading.py",
     "recording.py",
+    "reports.py",
     "ros1.py",
     "ros2.py",
     "supervisor.py",
+    "tables.py",
+    "unknown.py",
     "values.py",
+    "viewing.py",
 }
 
 

@@ -1,124 +1,312 @@
 # -*- coding: utf-8 -*-
-"""What the supervisor knows of the robots, and what it does not.
-
-After a start (or a restart: nothing is taken from a file), and after a command whose
-delivery is uncertain or an answer that did not come, part of the robots' state is
-*unconfirmed*: a field of a component (its location, one of its variables) holds
-:class:`Unknown`, with the values it may have (its *candidates*, or any value). The
-generated conditions and effects read fields as they always do; reading an unknown one
-raises :class:`Unconfirmed` (a ``BaseException``, so that no ``except Exception`` of the
-generated code or the runtime can take it for bad data). :func:`completions` then runs
-the same code again once per candidate of the field it read, and so on: a controllable
-event is allowed only where it is allowed in every completion, and an uncontrollable
-event moves each field to the values it has after it in the completions where it can
-happen. A field with too many candidates, or any value, is never enumerated: what reads
-it is held until the robot confirms it (a report, an event that tells, fresh data).
+"""The belief: what the supervisor believes of where the robots are (:class:`Belief`, a part of
+the supervisor). The values a field may have, and the completions tried over them, are
+``unknown.py``'s.
 
 Standard library only, Python 3.8 or newer (ROS Noetic).
 """
 
 from __future__ import absolute_import, annotations
 
-from typing import Any, Callable, Dict, List, Optional, Tuple
+import copy
+import json
+import time
+from typing import Any, Callable, Dict, Optional, Tuple
 
-ENUMERABLE = 64  # a field with more candidates than this is "any value" (never enumerated)
-SEARCH_LIMIT = 4096  # completions tried for one question before the answer is "unknown"
-
-
-class Unconfirmed(BaseException):
-    """Raised where generated code reads a field whose value is not confirmed."""
-
-    def __init__(self, field: str) -> None:
-        super(Unconfirmed, self).__init__(field)
-        self.field = field
+from .answers import Answers
+from .reading import Unreadable, fits
+from .tables import Event
+from .unknown import TooMany, Unknown, completions, distinct
+from .values import Data, plain
 
 
-class Unknown(object):
-    """The value of an unconfirmed field: any use of it raises :class:`Unconfirmed`."""
+class Belief(Answers):
+    """What the supervisor believes of where the robots are.
 
-    __slots__ = ("field",)
+    It owns ``unconfirmed`` (field -> the values it may have, None: any), ``why`` (per
+    component) and ``versions`` (field -> how many times its candidates changed). While part of
+    the state is unconfirmed, a controllable event is performed only where it is allowed in
+    every state the robots may be in and sends the same data in each, and an uncontrollable
+    event moves each field to what it leads to in the states where it can happen; a report
+    (:meth:`confirm`) makes a component known. Answers and commands are :class:`Answers`'."""
 
-    def __init__(self, field: str) -> None:
-        self.field = field
+    def _reset_belief(self, confirmed: bool) -> None:
+        # unconfirmed field -> the values it may have (None: any); why, per component
+        self.unconfirmed: Dict[str, Optional[Tuple[Any, ...]]] = {}
+        self.why: Dict[str, str] = {}
+        self.versions: Dict[str, int] = {}  # field -> how many times its candidates changed
+        if not confirmed:
+            self.unconfirm(
+                dict((attribute, self.CANDIDATES[attribute]) for attribute in self.COMPONENT_OF),
+                "not confirmed since the start",
+            )
 
-    def _read(self, *_args: Any) -> Any:
-        raise Unconfirmed(self.field)
+    def unsure(self) -> Dict[str, Dict[str, Any]]:
+        """The unconfirmed components: {component: {"why": ..., "may_be": {field label: [values]
+        or "any"}}}."""
+        out: Dict[str, Dict[str, Any]] = {}
+        for attribute, values in self.unconfirmed.items():
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            entry = out.setdefault(component, {"why": self.why.get(component, "unconfirmed"), "may_be": {}})
+            entry["may_be"][self.LABELS[attribute]] = "any" if values is None else [plain(v) for v in values]
+        return out
 
-    __eq__ = __ne__ = __lt__ = __le__ = __gt__ = __ge__ = _read
-    __bool__ = __hash__ = __len__ = __iter__ = __contains__ = __getitem__ = _read
-    __add__ = __radd__ = __sub__ = __rsub__ = __mul__ = __rmul__ = _read
-    __truediv__ = __rtruediv__ = __floordiv__ = __rfloordiv__ = __mod__ = __rmod__ = _read
-    __pow__ = __rpow__ = __neg__ = __pos__ = __abs__ = _read
-    __int__ = __float__ = __index__ = __round__ = _read
+    def unconfirm(self, fields: Dict[str, Optional[Tuple[Any, ...]]], why: str) -> None:
+        """The ``fields`` (attribute -> the values each may have, None: any) are not known any
+        more, for the reason ``why`` (said per component). A field with one value is known."""
+        for attribute, values in fields.items():
+            if values is not None:
+                values = distinct(list(values))
+            if values is not None and len(values) == 1:
+                self.know(attribute, values[0])
+                continue
+            if attribute not in self.unconfirmed or self.unconfirmed[attribute] != values:
+                self.versions[attribute] = self.versions.get(attribute, 0) + 1
+            self.unconfirmed[attribute] = values
+            self.health_changes += 1
+            setattr(self, attribute, Unknown(attribute))
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            if self.why.get(component) != why:
+                self.why[component] = why
+                self.health_changes += 1
+        self._dirty = True
 
-    def __getattr__(self, name: str) -> Any:
-        raise Unconfirmed(self.field)
+    def know(self, attribute: str, value: Any) -> None:
+        """The field ``attribute`` is confirmed to hold ``value``."""
+        if attribute in self.unconfirmed:
+            del self.unconfirmed[attribute]
+            self.health_changes += 1
+            self.versions[attribute] = self.versions.get(attribute, 0) + 1
+            component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+            if not any(self.COMPONENT_OF.get(a, self.LABELS[a]) == component for a in self.unconfirmed):
+                self.why.pop(component, None)
+        setattr(self, attribute, value)
+        self._dirty = True
 
-    def __repr__(self) -> str:
-        return "<unconfirmed>"
+    def confirm(self, component: str, report: Any, since: Optional[float] = None) -> Optional[str]:
+        """A report of where ``component`` is, from its driver: a location name, or an object
+        with ``state`` (the location) and values of its variables by name. Taken (None) when
+        every value is one the component may have now; else nothing changes, and why is
+        returned. Variables it does not give stay as they are. ``since``: when (this wall clock)
+        the driver was asked; an answer stamped later may not be in the report: it is taken."""
+        fields = self.COMPONENTS.get(component)
+        if fields is None:
+            return "no component %s" % (component,)
+        if isinstance(report, str) and report.lstrip().startswith("{"):
+            try:
+                report = json.loads(report)
+            except ValueError as error:
+                return "not a location or a JSON object (%s)" % (error,)
+        if isinstance(report, str):
+            report = {"state": report.strip()}
+        if not isinstance(report, dict):
+            return "not a location or a JSON object"
+        values: Dict[str, Any] = {}
+        by_label = dict((self.LABELS[a], a) for a in fields)
+        for key, value in report.items():
+            attribute = by_label.get(component if key == "state" else "%s.%s" % (component, key))
+            if attribute is None:
+                return "%s has no %s" % (component, "location" if key == "state" else "variable %s" % key)
+            domain = next(f[4] for f in self.FIELDS if f[0] == attribute)
+            if not fits(domain, value):
+                return "%s: %r is outside its domain" % (key, value)
+            may = self.unconfirmed.get(attribute, ())
+            if attribute in self.unconfirmed:
+                if may is not None and not any(type(v) is type(value) and v == value for v in may):
+                    return "%s: %r is not where it may be now (%s)" % (key, value, ", ".join(map(str, may)))
+            elif not (type(getattr(self, attribute)) is type(value) and getattr(self, attribute) == value):
+                return "%s: %r, but it is known to be %r" % (key, value, getattr(self, attribute))
+            values[attribute] = value
+        for attribute, value in values.items():
+            self.know(attribute, Data.wrap(value) if isinstance(value, (dict, list)) else value)
+            if self.watching and self.awaited(attribute):
+                # as reported: waiting for its answer from when the driver was asked
+                self.commanded[attribute] = since if since is not None else time.time()
+            else:
+                self.commanded.pop(attribute, None)
+        return None
 
+    def _answer_trial(self, method: str, attribute: str) -> Callable[[], Any]:
+        def run() -> Any:
+            getattr(self, method)(Unknown("value"))
+            return getattr(self, attribute)
 
-def enumerable(domain: Any) -> Optional[Tuple[Any, ...]]:
-    """The values a field of ``domain`` (as the generated ``FIELDS`` give it) can take, when
-    they are few enough to try one by one; None otherwise (a double, a string, a wide range)."""
-    if isinstance(domain, tuple):
-        if len(domain) == 3 and domain[0] == "integer" and type(domain[1]) is int:
-            low, high = domain[1], domain[2]
-            return tuple(range(low, high + 1)) if high - low < ENUMERABLE else None
-        return tuple(domain) if len(domain) <= ENUMERABLE else None
-    if domain == "boolean":
-        return (False, True)
-    return None
+        return run
 
+    def after_answers(self, attribute: str) -> Dict[str, Optional[Tuple[Any, ...]]]:
+        """Where the component whose location is ``attribute`` may be when an answer it waits for
+        may have come: where it is, or where any of them leads (every field of the component
+        anywhere in its domain when an answer's effect reads its data)."""
+        values = [getattr(self, attribute)]
+        for name in self.awaited(attribute):
+            try:
+                outcomes = self._over(self._answer_trial(self.EVENT[name].method, attribute))
+            except TooMany:
+                component = self.COMPONENT_OF.get(attribute, attribute)
+                return dict((a, self.CANDIDATES[a]) for a in self.COMPONENTS.get(component, (attribute,)))
+            values.extend(value for _, value in outcomes)
+        return {attribute: distinct(values)}
 
-def distinct(values: List[Any]) -> Tuple[Any, ...]:
-    """``values`` without repeats, in order (compared with ``==``: values need not hash)."""
-    out: List[Any] = []
-    for value in values:
-        if not any(value is seen or (type(value) is type(seen) and value == seen) for seen in out):
-            out.append(value)
-    return tuple(out)
+    def _over(self, run: Callable[[], Any]) -> list[Tuple[Dict[str, Any], Any]]:
+        """``run()`` once per completion of the unconfirmed fields it reads (``belief.completions``),
+        each from the state as it is now, which is put back afterwards; nothing is recorded
+        meanwhile. Raises ``TooMany`` when the answer cannot be had by trying."""
+        saved = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+        mutable = [isinstance(value, (Data, list, dict)) for value in saved]
+        dirty, sent, observer = self._dirty, self._sent, self.observer
+        self.observer = None
 
+        def assign(fixed: Dict[str, Any]) -> None:
+            for attribute, value, copied in zip(self.ATTRIBUTES, saved, mutable):
+                setattr(self, attribute, copy.deepcopy(value) if copied else value)
+            for attribute, value in fixed.items():
+                setattr(self, attribute, value)
+            self._dirty = True
+            self._sent = {}
 
-class TooMany(Exception):
-    """A question needs more completions than :data:`SEARCH_LIMIT`, or a field it reads has
-    any value: its answer is unknown."""
-
-    def __init__(self, field: str) -> None:
-        super(TooMany, self).__init__(field)
-        self.field = field
-
-
-def completions(
-    fields: Dict[str, Optional[Tuple[Any, ...]]],
-    assign: Callable[[Dict[str, Any]], None],
-    run: Callable[[], Any],
-    limit: int = SEARCH_LIMIT,
-) -> List[Tuple[Dict[str, Any], Any]]:
-    """``run()`` in every completion of the unconfirmed ``fields`` (attribute -> candidates,
-    None: any value) that it reads: ``[(values fixed, result)]``. ``assign(fixed)`` puts a
-    completion in place (the fields fixed, the others unknown) before each run. Raises
-    :class:`TooMany` when a field read has any value or the runs would exceed ``limit``."""
-    out: List[Tuple[Dict[str, Any], Any]] = []
-    stack: List[Dict[str, Any]] = [{}]
-    runs = 0
-    while stack:
-        fixed = stack.pop()
-        runs += 1
-        if runs > limit:
-            raise TooMany(next(iter(fields)) if fields else "")
-        assign(fixed)
         try:
-            result = run()
-        except Unconfirmed as unconfirmed:
-            field = unconfirmed.field
-            values = fields.get(field)
-            if values is None or field in fixed:
-                raise TooMany(field) from None
-            for value in reversed(values):
-                branch = dict(fixed)
-                branch[field] = value
-                stack.append(branch)
-            continue
-        out.append((fixed, result))
-    return out
+            return completions(self.unconfirmed, assign, run)
+        finally:
+            for attribute, value in zip(self.ATTRIBUTES, saved):
+                setattr(self, attribute, value)
+            self._dirty, self._sent, self.observer = dirty, sent, observer
+
+    def _settle_fields(self, states: list[list[Any]]) -> None:
+        """After an event taken in several completions: each field known where it has one value
+        in all of them, else unconfirmed with the values it has (its earlier candidates where a
+        completion left it unknown)."""
+        for index, attribute in enumerate(self.ATTRIBUTES):
+            values = [state[index] for state in states]
+            found: list[Any] = []
+            anything = False
+            for value in values:
+                if isinstance(value, Unknown):
+                    earlier = self.unconfirmed.get(attribute)
+                    if earlier is None:
+                        anything = True
+                    else:
+                        found.extend(earlier)
+                else:
+                    found.append(value)
+            if anything:
+                if self.unconfirmed.get(attribute, ()) is not None or attribute not in self.unconfirmed:
+                    self.unconfirm({attribute: None}, self.why.get(self.COMPONENT_OF.get(attribute, ""), "unconfirmed"))
+                continue
+            found_values = distinct(found)
+            if len(found_values) == 1:
+                self.know(attribute, found_values[0])
+            elif attribute not in self.unconfirmed or self.unconfirmed[attribute] != found_values:
+                component = self.COMPONENT_OF.get(attribute, self.LABELS[attribute])
+                self.unconfirm({attribute: found_values}, self.why.get(component, "unconfirmed"))
+
+    def _current_unsure(self) -> Tuple[Callable[..., Optional[str]], ...]:
+        """While part of the state is unconfirmed: the controllable events allowed wherever the
+        robots may be (none when that cannot be told by trying)."""
+
+        def run() -> Tuple[str, ...]:
+            self._provide()
+            allowed = self._allowed()
+            return tuple(p.__name__ for p in (self._filter(allowed) if self.stale else allowed))
+
+        try:
+            outcomes = self._over(run)
+        except TooMany as too_many:
+            self.warn(
+                "holding every command: too much is unconfirmed to tell what is allowed (%s)"
+                % self.LABELS.get(too_many.field, too_many.field),
+                "too many",
+            )
+            return ()
+        if not outcomes:
+            return ()
+        first = outcomes[0][1]
+        common = [name for name in first if all(name in names for _, names in outcomes[1:])]
+        return tuple(self._unsure_event(name) for name in common)
+
+    def _unsure_event(self, method: str) -> Callable[..., Optional[str]]:
+        def perform(data: Any = None) -> Optional[str]:
+            return self._perform_unsure(method, data)
+
+        perform.__name__ = method
+        return perform
+
+    def _perform_unsure(self, method: str, data: Any) -> Optional[str]:
+        """Perform a controllable event allowed wherever the robots may be: only when it sends the
+        same data in every completion; then each field is where the event leaves it."""
+        event = self.BY_METHOD[method]
+        send = self.__dict__.get("send")
+
+        def run() -> Tuple[Optional[str], list[Any], list[Any]]:
+            self._provide()
+            sent: list[Any] = []
+
+            def stub(name: str, data: Any) -> bool:
+                sent.append(data)
+                return True
+
+            self.send = stub  # type: ignore[method-assign]
+            try:
+                result = getattr(self, method)(data)
+            finally:
+                if send is None:
+                    del self.send
+                else:
+                    self.send = send  # type: ignore[method-assign]
+            return result, sent, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+
+        try:
+            outcomes = self._over(run)
+        except TooMany:
+            return None
+        if not outcomes or any(result is None for _, (result, _, _) in outcomes):
+            return None
+        sent = outcomes[0][1][1]
+        if any(plain(other[1][1]) != plain(sent) for other in outcomes[1:]):
+            self.warn(
+                "held: %s would send different data where the robots may be (unconfirmed)" % event.name,
+                "differs " + event.name,
+            )
+            return None
+        if sent and not self.send(event.name, sent[0]):
+            return None
+        self._settle_fields([states for _, (_, _, states) in outcomes])
+        self._dirty = True
+        if self.observer is not None:
+            self._record(event.name, True, sent[0] if sent else data)
+        return event.name
+
+    def _deliver_unsure(self, event: Event, value: Any, stamp: Optional[float]) -> bool:
+        """An uncontrollable event while part of the state is unconfirmed: taken in each
+        completion where it can be, ignored (nothing changes) in the others, which therefore
+        stay possible: an answer may be spurious or a duplicate, so it tells where a component
+        is only where every place it may be leads to the same one."""
+
+        def run() -> Any:
+            why = self._not_taken(event.name, stamp)
+            state = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+            if why is not None:
+                return why, state
+            try:
+                getattr(self, event.method)(value)
+            except Unreadable as error:
+                return error
+            return None, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+
+        saved = type(self).GETTER(self)
+        try:
+            outcomes = self._over(run)
+        except TooMany as too_many:  # it reads what cannot be tried: anything it may change is unknown
+            self.unconfirm(
+                dict((a, self.CANDIDATES[a]) for a in self.COMPONENT_OF),
+                "%s came while too much was unconfirmed to follow it (%s)"
+                % (event.name, self.LABELS.get(too_many.field, too_many.field)),
+            )
+            return self.ignore(event.name, "too much is unconfirmed to tell what it changes")
+        unreadable = [result for _, result in outcomes if isinstance(result, Unreadable)]
+        if unreadable:
+            return self._unreadable(event, unreadable[0])
+        if all(why is not None for _, (why, _) in outcomes):
+            return self.ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
+        self._settle_fields([state for _, (_, state) in outcomes])
+        self._delivered(event, value, saved, stamp)
+        return True

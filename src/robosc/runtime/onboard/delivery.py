@@ -20,7 +20,7 @@ from __future__ import absolute_import, annotations
 import time
 from typing import Any, Dict, List, Optional, Set, Tuple
 
-from .belief import Unknown, distinct
+from .unknown import Unknown, distinct
 
 
 class Pending(object):

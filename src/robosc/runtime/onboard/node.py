@@ -15,29 +15,41 @@ from __future__ import absolute_import, annotations
 
 import json
 import math
-import os
 import re
 import sys
 import time
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Union
 
 from .delivery import Delivery
-from .messages import Unsendable, conforms, fill, received, wire_type
-from .recording import EventLog, Gated, Recorder, writable
+from .layer import BLOCKED_TOPIC, SupervisionLayer
+from .messages import Unsendable, fill, received
+from .node_base import Call, Topic
+from .recording import EventLog, Recorder, writable
+from .reports import REPORT_PREFIX, NodeReports
 from .supervisor import Warnings
-from .values import finite, plain
+from .viewing import VIEW_EVENTS_TOPIC, VIEW_PAGE_TOPIC, NodeView
+
+# what the adapters read from here
+__all__ = [
+    "BLOCKED_TOPIC",
+    "HEALTH_TOPIC",
+    "HOUSEKEEPING",
+    "PARAMETERS",
+    "REPORT_PREFIX",
+    "STATE_TOPIC",
+    "VIEW_EVENTS_TOPIC",
+    "VIEW_PAGE_TOPIC",
+    "Call",
+    "NodeCore",
+    "Topic",
+    "controller_side",
+    "default_name",
+]
 
 MODES = ("controller", "supervisor")
 CONTROLLER_PREFIX = "robosc/controller"  # where a supervision layer meets the controller
 STATE_TOPIC = "state"
-BLOCKED_TOPIC = "blocked"
 HEALTH_TOPIC = "health"  # latched: whether the node holds, what it waits for, unreadable data
-# for ``robosc view`` on another machine: the live view's page (latched) and every event record
-VIEW_PAGE_TOPIC = "live_view/page"
-VIEW_EVENTS_TOPIC = "live_view/events"
-HEARTBEAT = '{"heartbeat": true}'  # on live_view/events every HEARTBEAT_SECONDS while watched
-HEARTBEAT_SECONDS = 0.5
-REPORT_PREFIX = "robosc/report/"  # + a component's name: the std_srvs/Trigger service its driver offers
 HOUSEKEEPING = 0.1  # seconds: at least this often, acknowledgements, time-outs and reports are looked at
 
 
@@ -161,50 +173,7 @@ def controller_side(name: str) -> str:
     return CONTROLLER_PREFIX + "/" + name
 
 
-class Topic(object):
-    """A topic the node reads (``events`` the robot reports) or writes (commands)."""
-
-    def __init__(self, name: str, communications: List[Any], events: List[Any]) -> None:
-        self.name = name
-        self.communications = communications  # the model's communications on it (one type)
-        self.events = events
-        self.takes: List[Tuple[str, Any]] = []  # (event, its communication) of a topic the robot publishes
-        # the events of takes when each takes the whole message as its data (object), else None
-        self.whole: Optional[Tuple[str, ...]] = None
-        self.package, self.type_name = wire_type(communications[0])
-        self.type: Any = None  # the message class, loaded by the adapter
-        self.publisher: Any = None
-        self.forward: Any = None  # supervision layer: the other side of the topic
-        # the data last sent and the message made of it, used again while the data is the very same
-        # object (a model's constant data is): a message is never changed once made
-        self.made: Any = None
-        # how many subscribers it has, as the middleware last told (ROS 2's matched events); None: ask
-        self.matched: Optional[int] = None
-
-
-class Call(object):
-    """A service or action the node calls, with its events."""
-
-    def __init__(self, communication: Any, events: Dict[str, Any]) -> None:
-        self.communication = communication
-        self.name = communication.ros_name
-        self.kind = communication.kind
-        interface: str = communication.interface or "/"
-        self.package, _, self.type_name = interface.partition("/")
-        self.trigger: Any = events.get("trigger")  # a service and an action always have these three
-        self.response: Any = events.get("response")
-        self.error: Any = events.get("error")
-        self.feedback: Any = events.get("feedback")  # actions only
-        self.cancel: Any = events.get("cancel")
-        self.type: Any = None  # classes, loaded by the adapter
-        self.request: Any = None
-        self.client: Any = None
-        self.server: Any = None  # supervision layer: what the controller calls
-        self.goal = 0  # which goal is current; callbacks of older ones are ignored
-        self.handle: Any = None
-
-
-class NodeCore(object):
+class NodeCore(NodeView, NodeReports, SupervisionLayer):
     """The node's work, middleware aside. An adapter calls :meth:`setup`, creates what
     :attr:`inputs`, :attr:`outputs`, :attr:`service_calls` and :attr:`action_calls` need,
     and implements ``publish``, ``publish_text``, ``call_service``, ``start_goal`` and
@@ -243,7 +212,7 @@ class NodeCore(object):
             data_timeout=self.params["data_timeout"],
             confirmed=self.params["trust_initial_state"],
         )
-        self.supervisor.send = self.send
+        self.supervisor.send = self.send  # type: ignore[method-assign]  # what the supervisor sends goes out here
         self.supervisor.watching = True
         self.supervisor.skew = self.params["clock_skew"]
         self.delivery = Delivery(self)
@@ -318,77 +287,6 @@ class NodeCore(object):
         health["in_flight"] = len(self.delivery.pending)
         return health
 
-    # ---- confirming where the robots are ---------------------------------------------------
-    def ask_reports(self, now: float) -> None:
-        """Ask the driver of each unconfirmed component (but those waiting for an acknowledgement)
-        for its state: as soon as its report service is there, then every ``report_interval``
-        seconds (a request that could not go out, no server yet, is tried at the next look)."""
-        waiting = self.delivery.waiting()
-        for component in self.supervisor.unsure():
-            if component in waiting:
-                continue
-            if now - self.asked.get(component, -1e18) < self.params["report_interval"]:
-                continue
-            client = self.report_clients.get(component)
-            if client is not None:
-                try:
-                    if component not in self.asked_since:  # the first request of a round
-                        self.asked_since[component] = time.time()
-                        self.asked_after[component] = self.supervisor.changes.get(component, 0)
-                    if self.ask_report(component, client):
-                        self.asked[component] = now
-                except Exception as error:
-                    self.asked[component] = now
-                    self.warnings("cannot ask %s for its state: %s" % (component, error), "ask " + component)
-
-    def report(self, component: str, success: bool, message: str) -> None:
-        """A driver's answer to a report request (``success`` False: it could not tell)."""
-        since = self.asked_since.pop(component, None)  # the round of requests ends
-        after = self.asked_after.pop(component, None)
-        if component not in self.supervisor.unsure():
-            return
-        if not success:
-            self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
-            return
-        if since is None or self.supervisor.changes.get(component, 0) != after:
-            # asked for before a command to it went out or an answer moved it (or an answer to an
-            # earlier round): its driver may have answered before that; asked again (once no
-            # command is on its way: ask_reports)
-            self.asked.pop(component, None)
-            self.log("info", "report of %s not taken: it changed since it was asked (a command or an answer)" % (component,))
-            return
-        why = self.supervisor.confirm(component, message, since)
-        if why is None:
-            self.log("info", "%s confirmed by its driver: %s" % (component, message))
-        else:
-            self.warnings("report of %s refused: %s" % (component, why), "report " + component)
-        self.checkpoint()
-
-    def overdue(self, now: float) -> None:
-        """Components that waited longer than ``answer_timeout`` for an answer the model expects:
-        unconfirmed (the answer may have come and been lost), and their drivers asked."""
-        limit = self.params["answer_timeout"]
-        if limit <= 0:
-            return
-        supervisor = self.supervisor
-        for attribute, since in list(supervisor.commanded.items()):
-            if now - since < limit or attribute in supervisor.unconfirmed:
-                continue
-            awaited = supervisor.awaited(attribute)
-            del supervisor.commanded[attribute]  # said once: its driver's report tells from now on
-            if not awaited:
-                continue
-            component = supervisor.COMPONENT_OF.get(attribute, attribute)
-            supervisor.unconfirm(
-                supervisor.after_answers(attribute),
-                "no answer (%s) for %.1f s" % (", ".join(awaited), now - since),
-            )
-            self.log(
-                "warning",
-                "%s: no answer (%s) for %.1f s; unconfirmed, its driver is asked"
-                % (component, ", ".join(awaited), now - since),
-            )
-
     def _plan_routes(self, robot_class: Any) -> None:
         by_comm: Dict[str, Dict[str, Any]] = {}
         for event in robot_class.EVENTS:
@@ -433,90 +331,6 @@ class NodeCore(object):
         self.start_view_topics(page)
         self.checkpoint()  # the first report on health, now that its publisher exists
 
-    def start_recording(self, live_view: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
-        """Events go to the event log, the live view (a sink) and the view topics (while anyone
-        listens), if any, stamped by ``self.clock``: the node's clock, which is the simulation's
-        under ``use_sim_time``."""
-        if live_view is not None:
-            self.sinks.append(live_view)
-        if self.view_topics:
-            self.sinks.append(Gated(self.view_event, lambda: self.text_subscribers(VIEW_EVENTS_TOPIC) > 0))
-        if self.sinks:
-            self.recorder = Recorder(self.supervisor, self.sinks, self.clock)
-            self.observe()
-
-    def observe(self) -> None:
-        """The supervisor reports its events only while a sink wants them (a viewer listening on
-        live_view/events comes in within a cycle): an event nobody records costs nothing."""
-        recorder = self.recorder
-        if recorder is not None:
-            self.supervisor.observer = recorder if recorder.wanted() else None
-
-    def view_page(self, robot_class: Any) -> Optional[bytes]:
-        """The live view's page generated next to the robot's module, read when the live view
-        or the view topics are on; None (with the reason logged) when the package has none.
-        Sets ``view_topics``: on when asked for and there is a page to show."""
-        port = self.params["view_port"]
-        if not (port or self.params["view_topics"]):
-            return None
-        module = sys.modules.get(robot_class.__module__)
-        folder = os.path.dirname(os.path.abspath(getattr(module, "__file__", None) or "."))
-        try:
-            with open(os.path.join(folder, "live_view.html"), "rb") as handle:
-                page = handle.read()
-        except OSError as error:
-            if port:
-                self.log(
-                    "error", "live view not started on port %d: %s (generate the package with graphviz)" % (port, error)
-                )
-            else:
-                self.log(
-                    "warning", "no live view page for robosc view: %s (generate the package with graphviz)" % (error,)
-                )
-            return None
-        self.view_topics = bool(self.params["view_topics"])
-        return page
-
-    def open_live_view(self, page: Optional[bytes]) -> Any:
-        """The live view on 127.0.0.1:``view_port``, or None when it is off or cannot start."""
-        port = self.params["view_port"]
-        if not port or page is None:
-            return None
-        from .live_server import LiveView
-
-        try:
-            view = LiveView(page, port=port)
-        except (OSError, ValueError) as error:
-            self.log("error", "live view not started on port %d: %s" % (port, error))
-            return None
-        view.last = self.state_record()
-        self.log("info", "live view on %s" % view.url)
-        return view
-
-    def state_record(self) -> Dict[str, Any]:
-        """A record of no event with the current state: what a new page starts from, stamped
-        by the node's clock as its events are (the simulation's under ``use_sim_time``)."""
-        return {
-            "time": round(self.clock(), 6),
-            "event": None,
-            "controllable": False,
-            "data": None,
-            "state": self.supervisor.snapshot(),
-        }
-
-    def start_view_topics(self, page: Optional[bytes]) -> None:
-        """After the adapter made the ``live_view/*`` publishers: the page, once (latched),
-        and the current state; each event follows through :meth:`view_event`."""
-        if not self.view_topics or page is None:
-            return
-        self.publish_text(VIEW_PAGE_TOPIC, page.decode("utf-8", "replace"))
-        self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(self.state_record(), sort_keys=True, default=str))
-
-    def view_event(self, record: Dict[str, Any]) -> None:
-        """A sink (gated by ``start_recording`` on the topic's subscribers): an event record on
-        ``live_view/events``."""
-        self.publish_text(VIEW_EVENTS_TOPIC, json.dumps(record, sort_keys=True, default=str))
-
     # ---- the cycle -----------------------------------------------------------------------
     def housekeep(self) -> None:
         """The commands on their way, the answers overdue, the reports to ask for: every cycle, and
@@ -547,14 +361,6 @@ class NodeCore(object):
             self.publish_state()
         if self.view_topics:
             self.heartbeat()
-
-    def heartbeat(self) -> None:
-        """Every half second, while someone watches: a record saying this node is there, so
-        that a remote live view can tell a quiet robot from one that is gone."""
-        now = time.monotonic()
-        if now - self.beat >= HEARTBEAT_SECONDS and self.text_subscribers(VIEW_EVENTS_TOPIC) > 0:
-            self.beat = now
-            self.publish_text(VIEW_EVENTS_TOPIC, HEARTBEAT)
 
     def close(self) -> None:
         """At shutdown: close the live view and the event log, and say how many cycles ran
@@ -685,111 +491,4 @@ class NodeCore(object):
         """Supervision layer: a call or goal is forwarded by the adapter's server callback."""
         return True
 
-    # ---- supervision layer: commands from the controller ----------------------------------
-    def request(self, topic: Topic, message: Any) -> bool:
-        """The controller published ``message`` on ``topic``: forwarded as the first event whose
-        data it is exactly (see :func:`messages.conforms`) and that the supervisor allows now,
-        else blocked and reported. Never forwarded as an event whose data it is not."""
-        found = self.events_of(message, topic.events, topic.name)
-        for event in found:
-            if self.supervisor.perform(event.name, message):
-                self.forwarded_count += 1
-                self.supervisor.settle()
-                self.checkpoint()
-                return True
-        self.refuse(found, topic.name, message)
-        return False
 
-    def admit(self, call: Call, request: Any) -> bool:
-        """The controller calls a service or sends a goal: performed (True) only when the
-        request is exactly the trigger's data and the supervisor allows it now, then what
-        follows settled and persisted, as for a message; else reported."""
-        found = self.events_of(request, [call.trigger], call.name)
-        if found and self.supervisor.perform(call.trigger.name, request):
-            self.supervisor.settle()
-            self.checkpoint()
-            return True
-        self.refuse(found, call.name, request)
-        return False
-
-    def events_of(self, message: Any, events: List[Any], where: str) -> List[Any]:
-        """The events among ``events`` whose data ``message`` is exactly, now (none when a number
-        in it is not finite, or it cannot be compared)."""
-        try:
-            if not finite(message):
-                return []
-            return [e for e in events if conforms(message, self.supervisor.template(e.name))]
-        except Exception as error:
-            self.warnings("command on %s: %s: %s" % (where, type(error).__name__, error), "request " + where)
-            return []
-
-    def refuse(self, found: List[Any], where: str, message: Any) -> None:
-        """Report a controller's command that is not forwarded: why, on ``blocked``."""
-        if not found:
-            why = "is the data of no event on it now" if finite(message) else "a number in it is not finite"
-            self.blocked(None, where, why, message)
-            return
-        why = self.supervisor.holds(found[0].name) or self.refused or "the supervisor does not allow it now"
-        self.refused = None  # read once: a later refusal (a message, a call, a goal) has its own reason
-        self.blocked(found[0].name, where, why, message)
-
-    def blocked(self, event: Optional[str], where: str, reason: str, data: Any = None) -> None:
-        """Report a blocked request on ``blocked`` (JSON) and in the log (rate-limited)."""
-        self.blocked_count += 1
-        self.warnings("blocked %s on %s: %s" % (event or "a command", where, reason), "blocked %s %s" % (event, where))
-        report = {
-            "event": event,
-            "topic": where,
-            "reason": reason,
-            "data": plain(data),
-            "state": self.supervisor.snapshot(),
-        }
-        try:
-            self.publish_text(BLOCKED_TOPIC, json.dumps(report, sort_keys=True))
-        except Exception as error:
-            self.warnings("cannot report a blocked command: %s" % (error,), "blocked report")
-
-    def publish(self, topic: Topic, message: Any) -> bool:
-        """Put a message on a topic (publishers of rospy and rclpy alike)."""
-        topic.publisher.publish(message)
-        return True
-
-    def publish_text(self, topic_name: str, text: str) -> None:
-        """``state`` or ``blocked``, as std_msgs/String (``text_type``), where the adapter made it."""
-        publisher = self.text_publishers.get(topic_name)
-        if publisher is not None:
-            publisher.publish(self.text_type(data=text))
-
-    def listeners(self, topic: Topic) -> int:
-        """How many subscribers ``topic`` (a command topic of the robot) has now."""
-        return self.subscribers(topic.publisher)
-
-    def text_subscribers(self, topic_name: str) -> int:
-        """How many subscribers a text topic of ``text_publishers`` has (0 when it has none)."""
-        publisher = self.text_publishers.get(topic_name)
-        return self.subscribers(publisher) if publisher is not None else 0
-
-    # ---- implemented by the adapters -------------------------------------------------------
-    acknowledges = False  # whether the middleware tells when a subscriber received a command
-
-    def acknowledged(self, topic: Topic) -> bool:
-        """Whether every subscriber of ``topic`` acknowledged all it was sent (where ``acknowledges``)."""
-        return True
-
-    def ask_report(self, component: str, client: Any) -> bool:
-        """Ask the driver of ``component`` (through ``client``) for its state; its answer comes back
-        through :meth:`report`. False when the request could not go out (no server yet)."""
-        return False
-
-    def subscribers(self, publisher: Any) -> int:
-        """How many subscribers ``publisher`` (one the adapter made) has now."""
-        raise NotImplementedError
-
-    def call_service(self, call: Call, request: Any) -> bool:
-        raise NotImplementedError
-
-    def start_goal(self, call: Call, goal: Any) -> bool:
-        raise NotImplementedError
-
-    def cancel_goal(self, call: Call) -> bool:
-        raise NotImplementedError
