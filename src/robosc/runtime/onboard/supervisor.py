@@ -57,8 +57,7 @@ from .belief import Belief
 from .effects import Effects
 from .health import DATA_TIMEOUT
 from .reading import Unreadable, flag, isfinite, num, text, unreadable_data, whole
-from .tables import ANY, KEEP, NO_DATA, REFUSED, Communication, Event, Warnings, moves, tally
-from .tables import _stderr as stderr
+from .tables import ANY, REFUSED, Communication, Event, Warnings, moves, stderr, tally
 from .unknown import TooMany, Unknown, distinct
 from .values import finite, plain
 
@@ -66,8 +65,6 @@ from .values import finite, plain
 __all__ = [
     "ANY",
     "DATA_TIMEOUT",
-    "KEEP",
-    "NO_DATA",
     "REFUSED",
     "Communication",
     "Event",

@@ -112,7 +112,7 @@ class Warnings(object):
         return True
 
 
-def _stderr(message: str) -> None:
+def stderr(message: str) -> None:
     print("[robosc] " + message, file=sys.stderr)
 
 
