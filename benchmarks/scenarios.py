@@ -146,10 +146,11 @@ def coordinators(model_name: str) -> dict[str, object]:
 def run_once(module: object, world: object, tasks: int, seed: int) -> object:
     """One run with the robots' speeds and start delays drawn from ``seed``."""
     from robosc.sim.fleet import FleetRun, Jitter, instances
+    from robosc.sim.run import drive
 
     robots = len(instances(module))  # type: ignore[arg-type]
-    run = FleetRun(world, module, robots, seed=seed, jitter=Jitter(seed))  # type: ignore[arg-type]
-    return run.run(tasks=tasks, timeout=300.0 * robots * tasks, stall=60.0)
+    run = FleetRun(world, module, robots, seed=seed, jitter=Jitter(seed), tasks=tasks, stall=60.0)  # type: ignore[arg-type]
+    return drive(run, timeout=300.0 * robots * tasks)
 
 
 def table(runs: int, only: list[str] | None = None) -> Iterator[tuple[str, str, int, int, int, list[float]]]:

@@ -11,9 +11,10 @@ import pytest
 
 from robosc.api import check_text, plan_supervisor, synthesize_model
 from robosc.cli.main import main
-from robosc.cli.sim import fleet_table
+from robosc.cli.sim import report_table
 from robosc.debug.simulator import load_module
 from robosc.sim.fleet import FleetMisfit, FleetRun, FleetWorld, Jitter
+from robosc.sim.run import drive
 from robosc.sim.world import WorldError, load_world
 
 pytest.importorskip("irsim")
@@ -44,8 +45,8 @@ def test_the_zero_time_warehouse_collides_in_the_same_world() -> None:
     """The same world driven by the warehouse written as if moves took no time: its supervisor
     sends the next command before the robot is there, and the run fails with a collision (so
     the test above can fail)."""
-    run = FleetRun(load_world(WORLD), module_of(ROOT / "docs/models/warehouse_zero_time.rscd"), 3)
-    report = run.run(tasks=1, timeout=300)
+    run = FleetRun(load_world(WORLD), module_of(ROOT / "docs/models/warehouse_zero_time.rscd"), 3, tasks=1)
+    report = drive(run, timeout=300)
     assert not report.ok and report.why.startswith("collision: "), report.why
     assert report.collisions >= 1
 
@@ -69,8 +70,8 @@ def test_a_robot_whose_way_is_blocked_stops_and_says_so(tmp_path: Path) -> None:
     text = WORLD.read_text().replace("walls:\n", "boxes:\n  - [6.4, 3.3, 0.3, 0.3]\nwalls:\n", 1)
     world = tmp_path / "blocked.yaml"
     world.write_text(text)
-    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3, seed=1)
-    report = run.run(tasks=1, timeout=200, stall=20)
+    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3, seed=1, tasks=1, stall=20)
+    report = drive(run, timeout=200)
     assert not report.ok and report.why.startswith("deadlock: "), report.why
     stopped = [s for s in report.robots if s.stops]
     assert len(stopped) == 1 and stopped[0].tasks == 0
@@ -158,8 +159,8 @@ def test_robots_keep_out_of_the_cells_at_and_next_to_a_person_standing_in_the_ai
     world.write_text(text)
     fleet = load_world(world).fleet
     assert fleet is not None
-    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3)
-    report = run.run(tasks=1, timeout=900)
+    run = FleetRun(load_world(world), module_of(ROOT / "examples/warehouse.rscd"), 3, tasks=1)
+    report = drive(run, timeout=900)
     assert report.ok and report.collisions == 0, report.why
     left = next(t for t, x, y in run.sim.person_trajectory if fleet.cell(x, y) != "c2")
     assert left >= 30.0
@@ -168,7 +169,7 @@ def test_robots_keep_out_of_the_cells_at_and_next_to_a_person_standing_in_the_ai
         assert all(fleet.cell(x, y) not in aisle for t, x, y, _ in status.trajectory if t < left)
         assert any(fleet.cell(x, y) in aisle for t, x, y, _ in status.trajectory if t > left)
         assert status.closest_person > 0.5  # no robot came near: a cell between them
-    out = fleet_table(report, "the person")
+    out = report_table(report, "the person")
     rows = re.findall(r"│ (bot\d) +│ +\d+ │ +\d+ s │ +[\d.]+ m │ +[\d.]+ m │ +([\d.]+) m │ +\d+ │ +- │", out)
     assert [r[0] for r in rows] == ["bot1", "bot2", "bot3"] and all(float(r[1]) > 0.5 for r in rows), out
 

@@ -18,7 +18,8 @@ pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim
 
 from robosc.api import plan_supervisor, synthesize_file
 from robosc.debug.simulator import load_module
-from robosc.sim.run import Report, run_ros
+from robosc.sim.report import Report
+from robosc.sim.run import run_ros
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import load_world
 

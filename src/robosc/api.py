@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from robosc.codegen.plan import Plan
     from robosc.debug.simulator import Simulator
     from robosc.language.reparse import Reparser
-    from robosc.sim.run import Report
+    from robosc.sim.report import Report
     from robosc.sim.world import World
     from robosc.synthesis.compare import Comparison
     from robosc.synthesis.options import SynthesisOptions
@@ -243,8 +243,8 @@ def run_world(
     world: str | Path | World,
     result: SynthesisResult,
     ros: int | None = None,
-    robots: int = 1,
-    timeout: float = 300.0,
+    robots: int | None = None,
+    timeout: float | None = None,
     speed: float = 4.0,
     rate: float = 10.0,
     seed: int = 0,
@@ -254,18 +254,32 @@ def run_world(
     on_start: Callable[[object], None] | None = None,
     plan: Plan | None = None,
     on_note: Callable[[str], None] | None = None,
+    tasks: int = 1,
+    on_event: Callable[[dict[str, Any]], None] | None = None,
+    on_step: Callable[[Any], None] | None = None,
 ) -> Report:
-    """Drive ``robots`` robots in a 2D world (a world file or a loaded one) with the
-    controller of a successful synthesis ``result``: on ROS ``ros`` (1 or 2: the generated
-    package on a private graph, paced at ``speed`` times real time) or, with None, in this
-    process. The run ends when every robot reached the goal (``report.ok``), one touched
-    something, or ``timeout`` simulated seconds passed. Raises ``robosc.sim.world.WorldError``
-    for a bad world file and ``robosc.sim.session.SessionError`` when the middleware does not
-    come up; ``folder`` keeps the package, logs and event logs (else a temporary one is used
-    for ROS runs); ``on_start(graph)`` is called once the ROS nodes are started. ``plan`` is
+    """Drive the robots of a 2D world (a world file or a loaded one) with the controller of a
+    successful synthesis ``result``: on ROS ``ros`` (1 or 2: the generated package on a private
+    graph, paced at ``speed`` times real time) or, with None, in this process.
+
+    In a world with a goal, ``robots`` robots (default 1) each have a controller of their own
+    and the run ends when every robot reached the goal (``report.ok``), one touched something,
+    or ``timeout`` simulated seconds passed (default 300). In a fleet's world (one with
+    ``fleet``) the model is the fleet's coordinator (robots: the model's, by default) and the
+    run ends when every robot did ``tasks`` tasks, at a collision, a deadlock or the time-out
+    (default 300 s per robot and task); ``on_event(record)`` hears the coordinator's events in
+    this process and ``on_step(world)`` is called after every step. Either way the result is
+    one :class:`robosc.sim.report.Report`.
+
+    Raises ``robosc.sim.world.WorldError`` for a bad world file,
+    ``robosc.sim.session.SessionError`` when the middleware does not come up,
+    ``robosc.sim.run.Misfit`` when the model sends none of the commands a world's robots obey
+    and ``robosc.sim.fleet.FleetMisfit`` when the model's fleet does not fit the world.
+    ``folder`` keeps the package, logs and event logs (else a temporary one is used for ROS
+    runs); ``on_start(graph)`` is called once the ROS nodes are started; ``page`` is the live
+    view's page the package carries (robosc.debug.live.live_page); ``plan`` is
     the result's plan when it is made already; ``on_note`` hears of the model's topics the
-    simulator does not have. Raises ``robosc.sim.run.Misfit`` when the model sends none of the
-    commands the world's robots obey."""
+    simulator does not have."""
     from robosc.debug.simulator import load_module
     from robosc.sim.run import fit, run_local, run_ros
     from robosc.sim.world import load_world
@@ -273,11 +287,15 @@ def run_world(
     loaded = world if not isinstance(world, str | Path) else load_world(world)
     plan = plan if plan is not None else plan_supervisor(result)
     module = load_module(plan)
-    for note in fit(loaded, module.Robot.COMMUNICATIONS):
-        if on_note is not None:
-            on_note(note)
+    if loaded.fleet is None:
+        for note in fit(loaded, module.Robot.COMMUNICATIONS):
+            if on_note is not None:
+                on_note(note)
     if ros is None:
-        return run_local(loaded, module, robots, timeout, rate, seed, folder)
+        return run_local(
+            loaded, module, robots, timeout, rate, seed, folder, tasks, on_event=on_event, on_step=on_step
+        )
     return run_ros(
-        loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, page=page, on_start=on_start
+        loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, on_step=on_step,
+        on_start=on_start, page=page, tasks=tasks,
     )

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import importlib.util
-import math
 import os
 import shutil
 import tempfile
@@ -24,10 +23,8 @@ from robosc.cli.common import (
 from robosc.cli.results import supervised
 
 if TYPE_CHECKING:
-    from robosc.sim.run import Report
+    from robosc.sim.report import Report
 
-
-FLEET_SECONDS = 300.0  # a fleet's default time-out: simulated seconds per robot and task
 
 
 @click.command()
@@ -115,6 +112,7 @@ def sim(
     the controller package is generated, the simulator's node and one controller node per
     robot run on a private ROS graph (loopback only), and the run ends when every robot
     has reached the goal (exit 0), one touched a wall, or the timeout passed (exit 1)."""
+    from robosc.sim.report import verdict
     from robosc.sim.world import WorldError, load_world
 
     try:
@@ -123,134 +121,117 @@ def sim(
         raise input_problem(str(exc).replace(": error: ", ": ", 1)) from None
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
-    if world.fleet is not None:
-        _fleet(world, model, include, ros, robots, tasks, timeout, speed, rate, seed, record, domain,
-               port if view else None)
-    if view:
+    fleet = world.fleet is not None
+    if view and not fleet:
         raise input_problem(
             f"{world_file}: --view draws a fleet's world (one with 'fleet'); to watch a robot's controller "
             "here, run robosc view while robosc sim runs"
         )
-    timeout = timeout if timeout is not None else 300.0
-    robots = robots or 1
-    crowded = world.room_for(robots)
-    if crowded is not None:
-        raise input_problem(crowded)
+    if not fleet:
+        crowded = world.room_for(robots or 1)
+        if crowded is not None:
+            raise input_problem(crowded)
     result, plan = supervised(model, include, "a simulation")
     if ros != "none":
         _check_middleware(int(ros))
-    folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-sim-"))
+    live = _fleet_view(result, world, port) if view else None
+    folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-" if fleet else "robosc-sim-"))
     try:
-        page = None
-        if ros != "none":
-            from robosc.cli.generate import live_page
-
-            page = live_page(result)
-        report = _run(
-            model, result, world, ros, folder, page,
-            plan=plan, robots=robots, timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain,
-            on_note=lambda note: click.echo(f"robosc: note: {note}", err=True),
-        )
-        _print(report, ros)
+        report = _run(model, result, world, ros, folder, live, fleet, plan=plan, robots=robots, tasks=tasks,
+                      timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain)
+        click.echo(report_table(report, _title(report, world, ros)))
+        click.echo(verdict(report))
         if record:
-            from robosc.sim.recording import write_recording
-
-            for written in write_recording(report, world, folder):
-                click.echo(f"recorded {written}")
+            _record(report, world, folder, ros)
     finally:
         if not record:
             shutil.rmtree(folder, ignore_errors=True)
-    raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
-
-
-def _run(
-    model: str, result: object, world: object, ros: str, folder: Path, page: str | None, **options: Any
-) -> Report:
-    from robosc.api import run_world
-    from robosc.sim.run import Misfit
-    from robosc.sim.session import SessionError
-
-    try:
-        if ros == "none":
-            return run_world(world, result, None, folder=folder, **options)  # type: ignore[arg-type]
-        return run_world(world, result, int(ros), folder=folder, page=page, on_start=_say_where, **options)  # type: ignore[arg-type]
-    except Misfit as exc:
-        raise input_problem(f"{model} {exc}") from None
-    except SessionError as exc:
-        raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
-
-
-def _fleet(
-    world: Any, model: str, include: tuple[str, ...], ros: str, robots: int | None, tasks: int,
-    timeout: float | None, speed: float, rate: float, seed: int, record: str | None, domain: int | None,
-    port: int | None,
-) -> None:
-    """A fleet's world: the coordinator commanding a driver per robot, on ROS (the generated
-    package and the simulator's node) or in this process (exits). ``port``: serve the fleet's
-    live view there."""
-    from robosc.debug.fleet_view import render_fleet_page
-    from robosc.debug.simulator import load_module
-    from robosc.sim.fleet import FleetMisfit, FleetRun, check_size, instances
-    from robosc.sim.fleet_ros import run_fleet_ros
-    from robosc.sim.fleet_view import FleetFeed
-    from robosc.sim.session import SessionError, pace
-
-    result, plan = supervised(model, include, "a simulation")
-    module = load_module(plan)
-    robots = robots if robots is not None else len(instances(module))
-    limit = timeout if timeout is not None else FLEET_SECONDS * robots * tasks
-    if ros != "none":
-        _check_middleware(int(ros))
-    try:
-        check_size(instances(module), robots)
-    except FleetMisfit as exc:
-        raise input_problem(f"{model}: {exc}") from None
-    live = _fleet_view(result, world, port) if port is not None else None
-    folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
-    try:
-        if ros == "none":
-            runs: list[FleetRun] = []
-            hooks: dict[str, Any] = {}
-            if live is not None:  # watched: at --speed times real time
-                feed = FleetFeed(live.publish)
-                started = time.monotonic()
-
-                def step() -> None:
-                    feed.step(runs[0].world)
-                    pace(started, runs[0].sim.time, speed)
-
-                hooks = {"on_event": feed.event, "on_step": step}
-            runs.append(FleetRun(world, module, robots, seed=seed, rate=rate, **hooks))
-            report = runs[0].run(tasks=tasks, timeout=limit)
-        else:  # it checks the fleet's size before it starts anything
-            report = run_fleet_ros(
-                world, plan, module, int(ros), robots, tasks=tasks, timeout=limit, speed=speed, rate=rate,
-                seed=seed, folder=folder, domain=domain, on_start=_say_where_fleet,
-                on_step=_ros_feed(live, folder) if live is not None else None, page=render_fleet_page(result),
-            )
-    except (FleetMisfit, ValueError) as exc:
-        raise input_problem(f"{model}: {exc}") from None
-    except SessionError as exc:
-        raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
-    finally:
-        if not record:
-            shutil.rmtree(folder, ignore_errors=True)
-    where = "no middleware" if ros == "none" else f"ROS {ros}"
-    click.echo(fleet_table(report, f"{len(report.robots)} robot(s) in {world.name}, {where}"))
-    verdict = "ok" if report.ok else "FAILED"
-    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")
-    if record:
-        from robosc.sim.recording import animate_fleet
-
-        folder.mkdir(parents=True, exist_ok=True)
-        animate_fleet(report, world, folder / "fleet.gif")
-        kept = "" if ros == "none" else ", the coordinator's package, its event log and the nodes' logs"
-        click.echo(f"recorded {folder} (fleet.gif: an animation of the run{kept})")
     if live is not None:
         live.end(report.why)
         click.echo(f"still serving the fleet's live view on {live.url}; Ctrl-C to stop", err=True)
         _serve_until_interrupted(live)
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
+
+
+def _run(
+    model: str, result: Any, world: Any, ros: str, folder: Path, live: Any, fleet: bool, speed: float,
+    **options: Any,
+) -> Report:
+    """The run, through the API (robosc.api.run_world): in this process or on ROS, one robot or
+    a fleet; a fleet's live view fed as it goes (``live``)."""
+    from robosc.api import run_world
+    from robosc.sim.fleet import FleetMisfit
+    from robosc.sim.run import Misfit
+    from robosc.sim.session import SessionError
+
+    hooks: dict[str, Any] = {"on_note": lambda note: click.echo(f"robosc: note: {note}", err=True)}
+    if live is not None and ros == "none":
+        hooks.update(_local_feed(live, speed))
+    elif live is not None:
+        hooks["on_step"] = _ros_feed(live, folder)
+    try:
+        if ros == "none":
+            return run_world(world, result, None, folder=folder, speed=speed, **hooks, **options)
+        from robosc.cli.generate import live_page
+
+        return run_world(
+            world, result, int(ros), folder=folder, page=live_page(result), speed=speed,
+            on_start=_say_where_fleet if fleet else _say_where, **hooks, **options,
+        )
+    except Misfit as exc:
+        raise input_problem(f"{model} {exc}") from None
+    except (FleetMisfit, ValueError) as exc:
+        raise input_problem(f"{model}: {exc}") from None
+    except SessionError as exc:
+        raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+
+
+def _title(report: Report, world: Any, ros: str) -> str:
+    """The run table's title: how many robots, and where they ran."""
+    if report.fleet:
+        where = "no middleware" if ros == "none" else f"ROS {ros}"
+        return f"{len(report.robots)} robot(s) in {world.name}, {where}"
+    return f"{len(report.robots)} robot(s), ROS: {ros}"
+
+
+def report_table(report: Report, title: str) -> str:
+    """A run's table (robosc.sim.report.columns), fitted to the terminal."""
+    from robosc.cli.table import boxed, terminal_width
+    from robosc.sim.report import columns
+
+    headers, rows = columns(report)
+    return boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width())
+
+
+def _record(report: Report, world: Any, folder: Path, ros: str) -> None:
+    """What --record keeps besides the packages and logs: for a world with a goal the MCAP file,
+    the plots and the animation; for a fleet the animation."""
+    from robosc.sim.recording import animate, write_recording
+
+    if not report.fleet:
+        for written in write_recording(report, world, folder):
+            click.echo(f"recorded {written}")
+        return
+    folder.mkdir(parents=True, exist_ok=True)
+    animate(report, world, folder / "fleet.gif")
+    kept = "" if ros == "none" else ", the coordinator's package, its event log and the nodes' logs"
+    click.echo(f"recorded {folder} (fleet.gif: an animation of the run{kept})")
+
+
+def _local_feed(live: Any, speed: float) -> dict[str, Any]:
+    """The hooks that feed a fleet's live view in this process, the run paced at ``speed`` times
+    real time (watched)."""
+    from robosc.sim.fleet_view import FleetFeed
+    from robosc.sim.session import pace
+
+    feed = FleetFeed(live.publish)
+    started = time.monotonic()
+
+    def step(world: Any) -> None:
+        feed.step(world)
+        pace(started, world.sim.time, speed)
+
+    return {"on_event": feed.event, "on_step": step}
 
 
 def _fleet_view(result: Any, world: Any, port: int) -> Any:
@@ -292,27 +273,6 @@ def _serve_until_interrupted(live: Any) -> None:
         live.close()
 
 
-def fleet_table(report: Any, title: str) -> str:
-    """A fleet run's table: per robot its tasks, waiting, distance, closest approaches, stops
-    and collision."""
-    from robosc.cli.table import boxed, terminal_width
-
-    headers: tuple[str, ...] = ("robot", "tasks", "waiting", "distance", "closest robot", "stops", "collision")
-    if report.person:
-        headers = (*headers[:5], "closest person", *headers[5:])
-    rows = []
-    for status, state, closest in zip(report.robots, report.status, report.closest_robot, strict=True):
-        hit = "-" if state.collided_at is None else f"at {state.collided_at:.1f} s"
-        row = [
-            status.name, str(status.tasks), f"{status.waiting:.0f} s", f"{state.distance:.1f} m", f"{closest:.2f} m",
-            str(status.stops), hit,
-        ]
-        if report.person:
-            row.insert(5, f"{state.closest_person:.2f} m")
-        rows.append(tuple(row))
-    return boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width())
-
-
 def _where(graph: object) -> tuple[str, int]:
     env = getattr(graph, "env", {})
     if getattr(graph, "ros", 2) == 1:
@@ -343,28 +303,3 @@ def _check_middleware(ros: int) -> None:
         raise input_problem(
             f"--ros 1 needs rospy and rosmaster for {python} (Debian: apt-get install python3-rospy python3-rosmaster)"
         )
-
-
-def _print(report: Report, ros: str) -> None:
-    from robosc.cli.table import boxed, terminal_width
-
-    shared = any(math.isfinite(r.closest_robot) for r in report.robots)
-    headers: tuple[str, ...] = ("robot", "time to goal", "distance", "closest approach", "commands", "refused")
-    if shared:  # the robots are bodies to each other
-        headers = (*headers[:4], "closest robot", *headers[4:])
-    rows = []
-    for r in report.robots:
-        if r.reached is not None:
-            goal = f"{r.reached:.1f} s"
-        elif r.collided_at is not None:
-            goal = f"hit at {r.collided_at:.1f} s"
-        else:
-            goal = "not reached"
-        row = [r.name, goal, f"{r.distance:.2f} m", f"{r.closest:.2f} m", str(r.commands), str(r.refused)]
-        if shared:
-            row.insert(4, f"{r.closest_robot:.2f} m")
-        rows.append(tuple(row))
-    title = f"{len(report.robots)} robot(s), ROS: {ros}"
-    click.echo(boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width()))
-    verdict = "ok" if report.ok else "FAILED"
-    click.echo(f"{verdict}: {report.why} ({report.simulated:.1f} s simulated in {report.wall:.1f} s)")

@@ -1,7 +1,8 @@
 """A fleet in one world: the world's side (:class:`FleetWorld`: one physics environment where
 the robots are bodies to each other, a driver per robot, the door, the person's detector) and
 the generated coordinator (one supervisor for every robot, the module ``robosc generate``
-writes) commanding it in this process (:class:`FleetRun`; on ROS: robosc.sim.fleet_ros).
+writes) commanding it in this process (:class:`FleetRun`; on ROS: robosc.sim.fleet_ros). Both run through
+robosc.sim.run, and report as a single robot does (robosc.sim.report).
 
 What the world offers a fleet model, by the names of its communications (``bot1.go``: the
 instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...):
@@ -29,13 +30,13 @@ from __future__ import annotations
 
 import math
 import random
-import time
 import types
 from collections.abc import Callable
 from typing import Any
 
-from robosc.record import field, record
-from robosc.sim.simulation import Simulation, Status
+from robosc.record import record
+from robosc.sim.report import Report, report_of
+from robosc.sim.simulation import Simulation
 from robosc.sim.world import Fleet, Pose, World
 
 REACHED = 0.06  # metres from a waypoint that count as there
@@ -255,23 +256,6 @@ class DoorSim:
             self.answers.append("door_opened" if self.state == "open" else "door_closed")
 
 
-@record
-class FleetReport:
-    ok: bool
-    why: str
-    robots: tuple[FleetStatus, ...]
-    simulated: float
-    closest_robot: tuple[float, ...]  # per robot, metres between its edge and another robot's
-    collisions: int
-    ignored: int  # answers the coordinator has no event for
-    wall: float = 0.0  # seconds of real time (on ROS: from the first step)
-    folder: str = ""  # on ROS: where the package and the logs are
-    status: tuple[Status, ...] = field(default=(), compare=False, repr=False)  # the simulation's, per robot
-    person: bool = False  # the world has a person (Status.closest_person: each robot's closest approach)
-    person_trajectory: tuple[tuple[float, float, float], ...] = field(default=(), compare=False, repr=False)
-    door_states: tuple[tuple[float, str], ...] = field(default=(), compare=False, repr=False)  # (t, state) at each change
-
-
 class FleetWorld:
     """The world's side of a fleet: the simulation, a driver per robot and the door. Commands
     come in by the coordinator's names (``bot1.go``, ``open_door``); each ``step()`` returns the
@@ -402,13 +386,14 @@ class FleetWorld:
         door = self.door.state if self.door is not None else None
         return {"t": round(self.sim.time, 3), "robots": robots, "person": person, "door": door}
 
-    def report(self, ended: tuple[bool, str], ignored: int, wall: float = 0.0, folder: str = "") -> FleetReport:
-        return FleetReport(
-            ended[0], ended[1], tuple(self.status), self.sim.time,
-            tuple(s.closest_robot for s in self.sim.status),
-            sum(1 for s in self.sim.status if s.collided_at is not None), ignored, wall, folder,
-            tuple(self.sim.status), self.sim.walker is not None, tuple(self.sim.person_trajectory),
-            tuple(self.door.states) if self.door is not None else (),
+    def report(self, ended: tuple[bool, str], tasks: int, ignored: int, wall: float = 0.0, folder: str = "") -> Report:
+        """The run's report (robosc.sim.report): ``tasks`` each robot had to do, ``ignored``
+        answers the coordinator has no event for."""
+        return report_of(
+            self.sim, ended[0], ended[1], wall, folder, self.names,
+            done=[s.tasks for s in self.status], waiting=[s.waiting for s in self.status],
+            stops=[s.stops for s in self.status], tasks=tasks, ignored=ignored,
+            door_states=tuple(self.door.states) if self.door is not None else (),
         )
 
 
@@ -420,18 +405,20 @@ def check_size(names: list[str], robots: int) -> None:
 
 
 class FleetRun:
-    """The generated coordinator (``module``) commanding ``world``'s fleet in this process."""
+    """The generated coordinator (``module``) commanding ``world``'s fleet in this process (what
+    robosc.sim.run.run_local steps for a fleet's world)."""
 
     def __init__(
         self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0,
         jitter: Jitter | None = None, on_event: Callable[[dict[str, Any]], None] | None = None,
-        on_step: Callable[[], None] | None = None,
+        on_step: Callable[[FleetWorld], None] | None = None, tasks: int = 1, stall: float = STALL,
     ) -> None:
         names = instances(module)
         check_size(names, robots)
         self.world = FleetWorld(world, names, jitter)
         self.sim = self.world.sim
         self.rate = rate
+        self.tasks, self.stall = tasks, stall  # the run ends well when every robot did its tasks
         self.ignored = 0
         run = self
 
@@ -450,7 +437,7 @@ class FleetRun:
                           "data": data, "state": run.coordinator.snapshot()})
 
             self.coordinator.observer = observe
-        self.on_step = on_step  # called after every step
+        self.on_step = on_step  # called with the world's side after every step
         self._next_tick = 0.0
 
     def step(self) -> None:
@@ -463,12 +450,11 @@ class FleetRun:
             self._next_tick += 1.0 / self.rate
             self.coordinator.tick()
         if self.on_step is not None:
-            self.on_step()
+            self.on_step(self.world)
 
-    def run(self, tasks: int = 1, timeout: float = 600.0, stall: float = STALL) -> FleetReport:
-        started = time.monotonic()
-        while True:
-            self.step()
-            ended = self.world.verdict(tasks, timeout, stall)
-            if ended is not None:
-                return self.world.report(ended, self.ignored, time.monotonic() - started)
+    def ended(self, timeout: float) -> tuple[bool, str] | None:
+        """Why the run ends now, or None (robosc.sim.run's loop asks after every step)."""
+        return self.world.verdict(self.tasks, timeout, self.stall)
+
+    def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report:
+        return self.world.report(ended, self.tasks, self.ignored, wall, folder)

@@ -31,13 +31,13 @@ from robosc.sim.fleet import (
     ROBOT_COMMANDS,
     STALL,
     FleetMisfit,
-    FleetReport,
     FleetWorld,
     Jitter,
     check_size,
     instances,
 )
 from robosc.sim.graph import Graph
+from robosc.sim.report import Report
 from robosc.sim.world import World
 
 NAMESPACE = "fleet"  # the coordinator's namespace on the simulation's graph
@@ -146,7 +146,7 @@ def run_fleet_ros(
     on_step: Callable[[FleetWorld], None] | None = None,
     page: str | None = None,
     settings: dict[str, object] | None = None,
-) -> FleetReport:
+) -> Report:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``
     runs once the nodes are started, ``on_end(graph)`` when the run is over, before they are
@@ -200,7 +200,7 @@ def run_fleet_ros(
         wall = time.monotonic() - started
         if on_end is not None:
             on_end(graph)
-        return fleet.report(ended, ignored, wall, str(folder))
+        return fleet.report(ended, tasks, ignored, wall, str(folder))
     except session.SessionError as exc:
         raise session.SessionError(f"{exc}\n{graph.output()}") from None
     finally:

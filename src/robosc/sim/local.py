@@ -1,5 +1,6 @@
 """A world and the generated supervisors in one process, without middleware: the quickest
-way to see a controller drive its robot (and what ``robosc sim --ros none`` runs).
+way to see a controller drive its robot (what ``robosc sim --ros none`` steps, through
+robosc.sim.run, for a world with a goal; a fleet's world steps robosc.sim.fleet.FleetRun).
 
 The supervisors are the very module ``robosc generate`` writes (loaded from the plan);
 messages go to them and commands come from them by topic name, as they would over ROS.
@@ -12,6 +13,7 @@ import types
 from pathlib import Path
 from typing import Any
 
+from robosc.sim.report import Report, report_of
 from robosc.sim.simulation import Message, Simulation
 
 # the roles of the simulator's topics that take commands, and what they do
@@ -135,11 +137,10 @@ class LocalRun:
             for robot in self.robots:
                 robot.tick()
 
-    def run(self, timeout: float) -> tuple[bool, str]:
-        """Until every robot reached the goal, one collided or ``timeout`` simulated seconds
-        passed: (success, why it ended)."""
-        while True:
-            self.step()
-            ended = self.sim.verdict(timeout)
-            if ended is not None:
-                return ended
+    def ended(self, timeout: float) -> tuple[bool, str] | None:
+        """Why the run ends now (every robot reached the goal, one collided, ``timeout``
+        simulated seconds passed), or None (robosc.sim.run's loop asks after every step)."""
+        return self.sim.verdict(timeout)
+
+    def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report:
+        return report_of(self.sim, ended[0], ended[1], wall, folder)

@@ -1,7 +1,8 @@
 """What ``robosc sim --record DIR`` leaves besides the nodes' event logs
 (``events/robotK.jsonl``): one MCAP file with every robot's pose, LiDAR and events (Foxglove
 replays it: ``foxglove.PoseInFrame`` and ``foxglove.LaserScan`` messages in the frame
-``world``), a sequence-of-events plot per robot, and an animated picture of the run.
+``world``), a sequence-of-events plot per robot, and an animated picture of the run; of a
+fleet's run, the animated picture (:func:`animate` draws both kinds of world).
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import math
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from robosc.sim.run import Report, robot_names
+from robosc.sim.report import Report, robot_names
 from robosc.sim.world import World
 
 FRAME = "world"
@@ -139,8 +140,8 @@ def write_plots(events: dict[str, list[Any]], folder: Path) -> list[Path]:
 
 
 def animate(report: Report, world: World, output: Path) -> Path:
-    """An animated GIF: walls, boxes, the track, the goal, each robot with its trajectory so
-    far and its LiDAR rays, one frame per ``ANIMATION_STEP`` seconds of simulated time."""
+    """An animated GIF of a run (:func:`scene`), one frame per ``ANIMATION_STEP`` seconds of
+    simulated time (``FLEET_STEP`` in a fleet's world)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -171,59 +172,112 @@ def _figure(world: World, inches: float, dpi: int) -> tuple[Any, Any]:
 ROBOT_COLOURS = ["#4e79a7", "#f28e2b", "#76b7b2", "#b07aa1", "#edc948", "#9c755f", "#ff9da7", "#bab0ac"]
 
 
-def scene(report: Report, world: World) -> tuple[Any, Any, int]:
-    """The animation's figure, its ``draw(frame)`` and the number of frames. Each robot has a
-    colour of its own, its name next to it and in the legend; robots on the same spot (they
-    do not see each other) have their names stacked, so that none hides another unseen."""
-    from matplotlib.patches import Circle, Rectangle
+FLEET_STEP = 2.0  # seconds of simulated time per frame of a fleet's animation
+TRAIL = 10.0  # seconds of trajectory behind each robot of a fleet
+CELL_COLOUR = "#dddddd"
 
+
+def scene(report: Report, world: World) -> tuple[Any, Any, int]:
+    """The animation's figure, its ``draw(frame)`` and the number of frames.
+
+    Drawn: the goal, the track, the walls and boxes; in a fleet's world its cells (one with a
+    single robot in it filled with that robot's colour), the door (red while not open) and the
+    person. Each robot has a colour of its own and its name next to it; in a world with a goal
+    its whole trajectory, its LiDAR rays and, where there are several, a legend (robots on the
+    same spot, which do not see each other, have their names stacked, so that none hides
+    another unseen); in a fleet's world its last ``TRAIL`` seconds of trajectory."""
+    from matplotlib.patches import Circle, Polygon, Rectangle
+
+    fleet = world.fleet
     height = world.size[1]
-    fig, ax = _figure(world, 6.0, 80)
-    goal = world.goal
-    (gx0, gx1), (gy0, gy1) = goal.x, goal.y
-    ax.add_patch(Rectangle((gx0, gy0), gx1 - gx0, gy1 - gy0, color="#59a14f", alpha=0.25))
-    if world.line is not None:
-        xs, ys = zip(*world.line.points, strict=True)
-        ax.plot(xs, ys, color="#444444", linewidth=3, alpha=0.5)
+    fig, ax = _figure(world, 7.0, 72) if fleet is not None else _figure(world, 6.0, 80)
+    cells = {}
+    if fleet is not None:
+        for name, polygon in fleet.cells:
+            patch = Polygon(list(polygon), closed=True, facecolor=CELL_COLOUR, edgecolor="#999999", alpha=0.5)
+            ax.add_patch(patch)
+            cx = sum(q[0] for q in polygon) / len(polygon)
+            ax.text(cx, max(q[1] for q in polygon) - 0.25, name, ha="center", fontsize=7, color="#777777")
+            cells[name] = patch
+    else:
+        (gx0, gx1), (gy0, gy1) = world.goal.x, world.goal.y
+        ax.add_patch(Rectangle((gx0, gy0), gx1 - gx0, gy1 - gy0, color="#59a14f", alpha=0.25))
+        if world.line is not None:
+            xs, ys = zip(*world.line.points, strict=True)
+            ax.plot(xs, ys, color="#444444", linewidth=3, alpha=0.5)
     for wall in world.walls:
-        ax.plot([p[0] for p in wall], [p[1] for p in wall], color="black", linewidth=2)
-    for x, y, w, h in world.boxes:
-        ax.add_patch(Rectangle((x - w / 2, y - h / 2), w, h, color="#e15759"))
+        ax.plot([q[0] for q in wall], [q[1] for q in wall], color="black", linewidth=2)
+    if fleet is None:
+        for x, y, w, h in world.boxes:
+            ax.add_patch(Rectangle((x - w / 2, y - h / 2), w, h, color="#e15759"))
+    door = None
+    if fleet is not None and fleet.door is not None:
+        (ax_, ay), (bx, by) = fleet.door.a, fleet.door.b
+        (door,) = ax.plot([ax_, bx], [ay, by], color="#e15759", linewidth=4)
     radius = world.robot.radius
     paths, bodies, rays, names = [], [], [], []
     for k, robot in enumerate(report.robots):
         color = ROBOT_COLOURS[k % len(ROBOT_COLOURS)]
         (path,) = ax.plot([], [], color=color, linewidth=1, label=robot.name)
-        body = Circle((0, 0), radius * (1.0 - 0.15 * (k % 4)), color=color, zorder=3 + k)  # the later ones smaller, on top
+        size = radius if fleet is not None else radius * (1.0 - 0.15 * (k % 4))  # the later ones smaller, on top
+        body = Circle((0, 0), size, color=color, zorder=3 if fleet is not None else 3 + k)
         ax.add_patch(body)
-        (ray,) = ax.plot([], [], color=color, linewidth=0.5, alpha=0.5)
-        name = ax.text(0, 0, robot.name, color=color, fontsize=7, fontweight="bold", zorder=10)
+        if fleet is None:
+            (ray,) = ax.plot([], [], color=color, linewidth=0.5, alpha=0.5)
+            rays.append(ray)
         paths.append(path)
         bodies.append(body)
-        rays.append(ray)
-        names.append(name)
-    if len(report.robots) > 1:
+        names.append(ax.text(0, 0, robot.name, color=color, fontsize=7, fontweight="bold", zorder=10))
+    if fleet is None and len(report.robots) > 1:
         ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
+    person = None
+    if fleet is not None and report.person_trajectory:
+        person = Circle((0, 0), fleet.person.radius if fleet.person else 0.25, color="#222222", zorder=4)
+        ax.add_patch(person)
     title = ax.set_title("", fontsize=9, loc="left")
     end = report.simulated
-    frames = max(1, int(end / ANIMATION_STEP) + 1)
+    every = FLEET_STEP if fleet is not None else ANIMATION_STEP
+    frames = max(1, int(end / every) + 1)
     lidar = world.robot.lidar
     step = 0.035 * height  # between stacked names
+    colour_of = {k: ROBOT_COLOURS[k % len(ROBOT_COLOURS)] for k in range(len(report.robots))}
 
     def draw(frame: int) -> list[Any]:
-        t = min(end, frame * ANIMATION_STEP)
+        t = min(end, frame * every)
         placed: list[tuple[float, float]] = []
+        inside: dict[str, list[int]] = {}
         for k, status in enumerate(report.status):
-            shown = [p for p in status.trajectory if p[0] <= t + 1e-9] or status.trajectory[:1]
-            paths[k].set_data([p[1] for p in shown], [p[2] for p in shown])
+            since = t - TRAIL if fleet is not None else -math.inf
+            shown = [q for q in status.trajectory if since <= q[0] <= t + 1e-9] or status.trajectory[:1]
+            paths[k].set_data([q[1] for q in shown], [q[2] for q in shown])
             x, y, heading = shown[-1][1], shown[-1][2], shown[-1][3]
             bodies[k].center = (x, y)
+            if fleet is not None:
+                names[k].set_position((x + radius * 1.2, y + radius * 1.2))
+                cell = fleet.cell(x, y)
+                if cell:
+                    inside.setdefault(cell, []).append(k)
+                continue
             rays[k].set_data(*_rays(status.scans, t, x, y, heading, lidar.beams, lidar.range_max))
             near = sum(1 for px, py in placed if abs(px - x) < 2 * radius and abs(py - y) < 2 * radius)
             placed.append((x, y))
             names[k].set_position((x + radius * 1.2, y + radius * 1.2 + near * step))
-        title.set_text(f"t = {t:5.1f} s")
-        return [*paths, *bodies, *rays, *names, title]
+        if fleet is None:
+            title.set_text(f"t = {t:5.1f} s")
+            return [*paths, *bodies, *rays, *names, title]
+        for name, patch in cells.items():  # a cell with one robot in it has its colour
+            robots = inside.get(name, [])
+            patch.set_facecolor(colour_of[robots[0]] if len(robots) == 1 else CELL_COLOUR)
+        if door is not None:
+            state = [s for when, s in report.door_states if when <= t + 1e-9][-1:] or ["closed"]
+            door.set_color("#59a14f" if state[0] == "open" else "#e15759")
+        said = ""
+        if person is not None:
+            here = [q for q in report.person_trajectory if q[0] <= t + 1e-9] or list(report.person_trajectory[:1])
+            person.center = (here[-1][1], here[-1][2])
+            said = f", the person in {fleet.cell(here[-1][1], here[-1][2]) or 'no cell'}"
+        title.set_text(f"t = {t:5.0f} s{said}")
+        return [*paths, *bodies, *names, title]
 
     return fig, draw, frames
 
@@ -244,86 +298,3 @@ def _rays(
         xs += [x, x + r * math.cos(angle), math.nan]
         ys += [y, y + r * math.sin(angle), math.nan]
     return xs, ys
-
-
-FLEET_STEP = 2.0  # seconds of simulated time per frame of a fleet's animation
-CELL_COLOUR = "#dddddd"
-
-
-def animate_fleet(report: Any, world: World, output: Path) -> Path:
-    """An animated GIF of a fleet's run (robosc.sim.fleet.FleetReport): the walls, the cells
-    (one with a single robot in it filled with that robot's colour), the door (red while not open), each robot
-    with its name and its last seconds of trajectory, and the person; one frame per
-    ``FLEET_STEP`` seconds of simulated time."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation, PillowWriter
-    from matplotlib.patches import Circle, Polygon
-
-    fleet = world.fleet
-    assert fleet is not None
-    fig, ax = _figure(world, 7.0, 72)
-    cells = {}
-    for name, polygon in fleet.cells:
-        patch = Polygon(list(polygon), closed=True, facecolor=CELL_COLOUR, edgecolor="#999999", alpha=0.5)
-        ax.add_patch(patch)
-        cx = sum(p[0] for p in polygon) / len(polygon)
-        ax.text(cx, max(p[1] for p in polygon) - 0.25, name, ha="center", fontsize=7, color="#777777")
-        cells[name] = patch
-    for wall in world.walls:
-        ax.plot([p[0] for p in wall], [p[1] for p in wall], color="black", linewidth=2)
-    door = None
-    if fleet.door is not None:
-        (ax_, ay), (bx, by) = fleet.door.a, fleet.door.b
-        (door,) = ax.plot([ax_, bx], [ay, by], color="#e15759", linewidth=4)
-    radius = world.robot.radius
-    bodies, names, trails = [], [], []
-    for k, robot in enumerate(report.robots):
-        color = ROBOT_COLOURS[k % len(ROBOT_COLOURS)]
-        (trail,) = ax.plot([], [], color=color, linewidth=1)
-        body = Circle((0, 0), radius, color=color, zorder=3)
-        ax.add_patch(body)
-        names.append(ax.text(0, 0, robot.name, color=color, fontsize=7, fontweight="bold", zorder=10))
-        bodies.append(body)
-        trails.append(trail)
-    person = None
-    if report.person_trajectory:
-        person = Circle((0, 0), fleet.person.radius if fleet.person else 0.25, color="#222222", zorder=4)
-        ax.add_patch(person)
-    title = ax.set_title("", fontsize=9, loc="left")
-    end = report.simulated
-    frames = max(1, int(end / FLEET_STEP) + 1)
-    colour_of = {k: ROBOT_COLOURS[k % len(ROBOT_COLOURS)] for k in range(len(report.robots))}
-
-    def draw(frame: int) -> list[Any]:
-        t = min(end, frame * FLEET_STEP)
-        inside: dict[str, list[int]] = {}
-        for k, status in enumerate(report.status):
-            shown = [p for p in status.trajectory if t - 10.0 <= p[0] <= t + 1e-9] or status.trajectory[:1]
-            trails[k].set_data([p[1] for p in shown], [p[2] for p in shown])
-            x, y = shown[-1][1], shown[-1][2]
-            bodies[k].center = (x, y)
-            names[k].set_position((x + radius * 1.2, y + radius * 1.2))
-            cell = fleet.cell(x, y)
-            if cell:
-                inside.setdefault(cell, []).append(k)
-        for name, patch in cells.items():  # a cell with one robot in it has its colour
-            robots = inside.get(name, [])
-            patch.set_facecolor(colour_of[robots[0]] if len(robots) == 1 else CELL_COLOUR)
-        if door is not None:
-            state = [s for when, s in report.door_states if when <= t + 1e-9][-1:] or ["closed"]
-            door.set_color("#59a14f" if state[0] == "open" else "#e15759")
-        said = ""
-        if person is not None:
-            here = [p for p in report.person_trajectory if p[0] <= t + 1e-9] or list(report.person_trajectory[:1])
-            person.center = (here[-1][1], here[-1][2])
-            said = f", the person in {fleet.cell(here[-1][1], here[-1][2]) or 'no cell'}"
-        title.set_text(f"t = {t:5.0f} s{said}")
-        return [*trails, *bodies, *names, title]
-
-    animation = FuncAnimation(fig, draw, frames=frames, blit=False)
-    animation.save(str(output), writer=PillowWriter(fps=ANIMATION_FPS))
-    plt.close(fig)
-    return output

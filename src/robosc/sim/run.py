@@ -1,45 +1,34 @@
-"""``robosc sim``: a world and a model, end to end. The controller is generated (one package,
-relative names), the simulator's node and one controller per robot start on a private ROS
-graph, and the run ends when every robot reached the goal (success), one touched a wall,
-or the timeout passed. ``ros=0`` runs the same supervisors in this process, without ROS.
+"""``robosc sim``: a world and a model, end to end, for one robot or a fleet alike: one run in
+this process (:func:`run_local`) and one over ROS (:func:`run_ros`), each giving one
+:class:`~robosc.sim.report.Report`.
+
+In a world with a goal (the maze, the line) each robot has a controller of its own and the run
+ends when every robot reached the goal (success), one touched something, or the time is up. In
+a fleet's world (one with ``fleet``) one coordinator commands every robot's driver, the door
+and the rest, and the run ends when every robot did its tasks, at a collision, a deadlock, or
+the time-out. On ROS the controller is generated (one package, relative names) and runs with
+the simulator's node on a private graph (robosc.sim.fleet_ros for a fleet).
 """
 
 from __future__ import annotations
 
-import math
 import tempfile
 import time
 import types
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any, Protocol
 
-from robosc.record import field, record
+from robosc.codegen.plan import Plan
+from robosc.codegen.ros import generate, package_name
+from robosc.sim import session
+from robosc.sim.fleet import FleetRun, Jitter, instances
+from robosc.sim.fleet_ros import run_fleet_ros
+from robosc.sim.graph import Graph
 from robosc.sim.local import COMMAND_ROLES, LocalRun
-from robosc.sim.simulation import Simulation, Status
+from robosc.sim.report import Report, report_of, robot_names
+from robosc.sim.simulation import Simulation
 from robosc.sim.world import World
-
-
-@record
-class RobotReport:
-    name: str
-    reached: float | None  # simulated seconds to the goal
-    distance: float
-    closest: float
-    collided_at: float | None
-    commands: int
-    refused: int
-    closest_robot: float = math.inf  # in a shared world: closest approach to another robot's edge
-
-
-@record
-class Report:
-    ok: bool
-    why: str
-    robots: tuple[RobotReport, ...]
-    simulated: float  # seconds of simulated time
-    wall: float  # seconds of real time, from the first step
-    folder: str = ""  # where the packages, logs and recordings are
-    status: tuple[Status, ...] = field(default=(), compare=False, repr=False)
 
 
 def roles(world: World, communications: tuple[object, ...]) -> list[str]:
@@ -74,18 +63,6 @@ def fit(world: World, communications: tuple[object, ...]) -> list[str]:
     ]
 
 
-def robot_names(count: int) -> list[str]:
-    return [f"robot{i + 1}" for i in range(count)]
-
-
-def report(sim: Simulation, ok: bool, why: str, wall: float, folder: str = "") -> Report:
-    robots = tuple(
-        RobotReport(name, s.reached, s.distance, s.closest, s.collided_at, s.commands, s.refused, s.closest_robot)
-        for name, s in zip(robot_names(sim.robots), sim.status, strict=True)
-    )
-    return Report(ok, why, robots, sim.time, wall, folder, tuple(sim.status))
-
-
 def event_logs(folder: Path, robots: int) -> list[Path]:
     """Where each robot's controller writes its events: ``folder/events/robotK.jsonl``."""
     events = folder / "events"
@@ -93,62 +70,125 @@ def event_logs(folder: Path, robots: int) -> list[Path]:
     return [events / f"{name}.jsonl" for name in robot_names(robots)]
 
 
+FLEET_SECONDS = 300.0  # a fleet's default time-out: simulated seconds per robot and task
+GOAL_SECONDS = 300.0  # a world with a goal's default time-out
+
+
+def default_timeout(world: World, robots: int, tasks: int = 1) -> float:
+    """Simulated seconds before a run counts as failed, unless told: 300 in a world with a goal,
+    300 per robot and task in a fleet's."""
+    return FLEET_SECONDS * robots * tasks if world.fleet is not None else GOAL_SECONDS
+
+
+def robots_of(world: World, module: types.ModuleType, robots: int | None) -> int:
+    """How many robots run: as asked, else one in a world with a goal and the model's fleet in
+    a fleet's world (its instances that take ``go``)."""
+    if robots is not None:
+        return robots
+    return len(instances(module)) if world.fleet is not None else 1
+
+
+class Control(Protocol):
+    """What commands the world's robots in this process: a controller per robot
+    (robosc.sim.local.LocalRun) or a fleet's coordinator (robosc.sim.fleet.FleetRun)."""
+
+    def step(self) -> None: ...
+
+    def ended(self, timeout: float) -> tuple[bool, str] | None: ...
+
+    def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report: ...
+
+
 def run_local(
     world: World,
     module: types.ModuleType,
-    robots: int = 1,
-    timeout: float = 300.0,
+    robots: int | None = None,
+    timeout: float | None = None,
     rate: float = 10.0,
     seed: int = 0,
     folder: Path | None = None,
+    tasks: int = 1,
+    jitter: Jitter | None = None,
+    on_event: Callable[[dict[str, Any]], None] | None = None,
+    on_step: Callable[[Any], None] | None = None,
 ) -> Report:
-    """The generated supervisors (``module``) driving ``robots`` robots in this process;
-    with a ``folder``, each robot's events go to ``folder/events/robotK.jsonl``."""
-    sim = Simulation(world, robots)
-    local = LocalRun(sim, module, rate=rate, seed=seed)
-    if folder is not None:
-        local.record(event_logs(folder, robots))
-    started = time.monotonic()
+    """The generated supervisors (``module``) driving the world's robots in this process:
+    ``robots`` robots (default :func:`robots_of`) for ``timeout`` simulated seconds at most
+    (default :func:`default_timeout`). In a world with a goal each robot has a controller of its
+    own, and with a ``folder`` each robot's events go to ``folder/events/robotK.jsonl``; in a
+    fleet's world the coordinator commands them until each did ``tasks`` tasks, ``jitter`` draws
+    the robots' speeds and start delays, ``on_event(record)`` hears each of its events and
+    ``on_step(world)`` is called with its robosc.sim.fleet.FleetWorld after each step. Raises FleetMisfit when the model's fleet does not
+    fit the world."""
+    robots = robots_of(world, module, robots)
+    timeout = timeout if timeout is not None else default_timeout(world, robots, tasks)
+    control: Control
+    local: LocalRun | None = None
+    if world.fleet is not None:
+        control = FleetRun(world, module, robots, seed, rate, jitter, on_event, on_step, tasks)
+    else:
+        control = local = LocalRun(Simulation(world, robots), module, rate=rate, seed=seed)
+        if folder is not None:
+            local.record(event_logs(folder, robots))
     try:
-        ok, why = local.run(timeout)
+        return drive(control, timeout, str(folder or ""))
     finally:
-        local.close()
-    return report(sim, ok, why, time.monotonic() - started, str(folder or ""))
+        if local is not None:
+            local.close()
+
+
+def drive(control: Control, timeout: float, folder: str = "") -> Report:
+    """Step ``control`` until the run ends (``timeout``: simulated seconds at most), and report
+    (``folder``: where its files are): the loop of every run in this process."""
+    started = time.monotonic()
+    while True:
+        control.step()
+        ended = control.ended(timeout)
+        if ended is not None:
+            return control.report(ended, time.monotonic() - started, folder)
 
 
 def run_ros(
     world: World,
-    plan: object,
+    plan: Plan,
     module: types.ModuleType,
     ros: int,
-    robots: int = 1,
-    timeout: float = 300.0,
+    robots: int | None = None,
+    timeout: float | None = None,
     speed: float = 1.0,
     rate: float = 10.0,
     seed: int = 0,
     folder: Path | None = None,
     domain: int | None = None,
-    on_step: Callable[[Simulation], None] | None = None,
+    on_step: Callable[[Any], None] | None = None,
     on_start: Callable[[object], None] | None = None,
-    trace: Callable[[str, int, str, float], None] | None = None,
+    trace: Callable[..., None] | None = None,
     params: dict[str, object] | None = None,
     page: str | None = None,
+    tasks: int = 1,
+    jitter: Jitter | None = None,
 ) -> Report:
-    """The generated controller package on ROS ``ros`` (1 or 2), one node per robot.
-    ``on_start(graph)`` runs once the nodes are started, ``on_step(sim)`` after each step,
-    ``trace(direction, robot, role, seconds)`` at each message sent ("out") and command come
-    ("in"), with its time.perf_counter();
-    ``params`` are more parameters of the controller nodes; ``page`` is the live view's page
-    the package carries (then ``robosc view`` can watch the robots)."""
-    from robosc.codegen.ros import generate, package_name
-    from robosc.sim import session
-    from robosc.sim.graph import Graph
-
+    """The generated controller package on ROS ``ros`` (1 or 2): in a world with a goal one node
+    per robot, in a fleet's world one coordinator and a driver node per robot
+    (robosc.sim.fleet_ros, where ``tasks`` and ``jitter`` are as in :func:`run_local`).
+    ``on_start(graph)`` runs once the nodes are started, ``on_step`` after each step (with the
+    simulation; a fleet's, with its robosc.sim.fleet.FleetWorld), ``trace`` at each message sent
+    ("out") and command come ("in"), with its time.perf_counter(); ``params`` are more
+    parameters of the controller nodes; ``page`` is the live view's page the package carries
+    (then ``robosc view`` can watch the robots)."""
+    robots = robots_of(world, module, robots)
+    timeout = timeout if timeout is not None else default_timeout(world, robots, tasks)
+    if world.fleet is not None:
+        return run_fleet_ros(
+            world, plan, module, ros, robots, tasks=tasks, timeout=timeout, speed=speed, rate=rate, seed=seed,
+            folder=folder, domain=domain, on_start=on_start, trace=trace, jitter=jitter, on_step=on_step, page=page,
+            settings=params,
+        )
     if folder is None:
         folder = Path(tempfile.mkdtemp(prefix="robosc-sim-"))
     folder.mkdir(parents=True, exist_ok=True)
-    package = folder / f"{package_name(plan)}_ros{ros}"  # type: ignore[arg-type]
-    generate(plan, ros, "controller", package, page, relative=True)  # type: ignore[arg-type]
+    package = folder / f"{package_name(plan)}_ros{ros}"
+    generate(plan, ros, "controller", package, page, relative=True)
     used = roles(world, module.Robot.COMMUNICATIONS)
     names = robot_names(robots)
     sim = Simulation(world, robots)
@@ -178,7 +218,7 @@ def run_ros(
         died = graph.failed(sim) if ok else None  # at the very end
         if died is not None:
             ok, why = False, died
-        return report(sim, ok, why, wall, str(folder))
+        return report_of(sim, ok, why, wall, str(folder))
     except session.SessionError as exc:
         raise session.SessionError(f"{exc}\n{graph.output()}") from None
     finally:
