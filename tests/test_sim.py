@@ -383,3 +383,23 @@ def test_a_shared_world_needs_a_start_for_each_robot(tmp_path: Path, capsys: pyt
         Simulation(lane, robots=3)
     code = main(["sim", str(tmp_path / "world.yaml"), str(ROOT / "examples/maze_solver.rscd"), "--robots", "3"])
     assert code == 2 and "it has 2, and 3 robots were asked for" in capsys.readouterr().err
+
+
+def test_a_world_with_a_goal_and_a_fleets_world_run_through_one_entry_to_one_report() -> None:
+    """robosc.api.run_world runs either kind of world in this process and returns the same
+    report: robots with a goal say when they got there, a fleet's robots how many tasks they did;
+    the time-out unless told is 300 s, and 300 s per robot and task in a fleet's world."""
+    from robosc.api import run_world, synthesize_file
+    from robosc.sim.report import Report
+    from robosc.sim.run import default_timeout
+
+    maze = run_world(ROOT / "examples/worlds/maze.yaml", synthesize_file(ROOT / "examples/maze_solver.rscd"), timeout=5)
+    lane_world = load_world(ROOT / "examples/worlds/lane.yaml")
+    lane = run_world(lane_world, synthesize_file(ROOT / "examples/scenarios/lane.rscd"), tasks=2)
+    assert type(maze) is type(lane) is Report
+    assert not maze.fleet and maze.tasks == 0 and [r.name for r in maze.robots] == ["robot1"]
+    assert maze.simulated == pytest.approx(5.0, abs=0.11) and maze.why.startswith("timeout")
+    assert lane.fleet and lane.tasks == 2 and lane.ok, lane.why
+    assert len(lane.robots) == 2 and all(r.tasks == 2 and r.reached is None for r in lane.robots)
+    assert lane.why == "every robot did its 2 task(s)"
+    assert default_timeout(lane_world, 4, 2) == 2400.0 and default_timeout(load_world(ROOT / "examples/worlds/maze.yaml"), 4) == 300.0

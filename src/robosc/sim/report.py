@@ -79,9 +79,10 @@ def report_of(
     done = list(fleet.pop("done", [0] * len(names)))  # type: ignore[call-overload]
     waiting = list(fleet.pop("waiting", [0.0] * len(names)))  # type: ignore[call-overload]
     stops = list(fleet.pop("stops", [0] * len(names)))  # type: ignore[call-overload]
+    goal = not fleet.get("tasks")  # a fleet's world has no goal: nobody reaches it
     robots = tuple(
         RobotReport(
-            name, s.reached, s.distance, s.closest, s.collided_at, s.commands, s.refused, s.closest_robot,
+            name, s.reached if goal else None, s.distance, s.closest, s.collided_at, s.commands, s.refused, s.closest_robot,
             done[i], waiting[i], stops[i], s.closest_person,
         )
         for i, (name, s) in enumerate(zip(names, sim.status, strict=True))
