@@ -27,7 +27,7 @@ from robosc.cli.main import main
 from robosc.debug.fleet_view import render_fleet_page
 from robosc.debug.live import render_page
 from robosc.runtime.onboard.live_server import LiveView
-from robosc.sim.fleet_view import EventTail, PoseFeed, fleet_map
+from robosc.sim.fleet_view import EventTail, PoseFeed, world_map
 from robosc.sim.world import load_world
 from ros_support import free_port, new_domain, ros2_available, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
@@ -249,7 +249,7 @@ def page_meta_locations() -> list[str]:
 def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, tmp_path: Path) -> None:  # noqa: F811
     result = synthesize_file(MODEL)
     world = load_world(str(WORLD))
-    view = LiveView(render_fleet_page(result, fleet_map(world)), port=0)
+    view = LiveView(render_fleet_page(result, world_map(world)), port=0)
     try:
         browser.get(view.url)
         assert wait_until(lambda: page(browser)["status"] == "live", 10)
@@ -334,13 +334,46 @@ def test_the_event_log_is_read_as_it_grows_whole_lines_only(tmp_path: Path) -> N
     assert tail.read() == [{"event": "d"}]
 
 
-def test_view_in_a_world_without_a_fleet_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
-    code = main(["sim", str(ROOT / "examples/worlds/maze.yaml"), str(ROOT / "examples/maze_solver.rscd"),
-                 "--ros", "none", "--view"])
-    err = capsys.readouterr().err
-    assert code == 2 and "--view draws a fleet's world" in err and "robosc view" in err, err
-    assert json.dumps(err)  # a message, no traceback
-    assert "Traceback" not in err
+def test_sim_view_shows_a_world_with_a_goal_and_each_robots_events(browser: Any, tmp_path: Path) -> None:  # noqa: F811
+    """The same view for robots that each have a controller of their own (the maze): the map with
+    the goal, every robot on it, each robot's events named for it (the list filters by robot),
+    and the end of the run; a fleet of two robots of one."""
+    port = free_port()
+    log = tmp_path / "sim.log"
+    with open(log, "wb") as out:
+        process = children.start(
+            [sys.executable, "-m", "robosc", "sim", str(ROOT / "examples/worlds/maze.yaml"),
+             str(ROOT / "examples/maze_solver.rscd"), "--ros", "none", "--robots", "2", "--view",
+             "--port", str(port), "--speed", "10", "--timeout", "120"],
+            stdout=out, stderr=subprocess.STDOUT,
+        )
+    try:
+        assert wait_until(lambda: "live view: http://127.0.0.1" in log.read_text(), 120), log.read_text()
+        browser.get(f"http://127.0.0.1:{port}/")
+        seen = lambda: browser.execute_script(  # noqa: E731
+            "return {status: document.getElementById('status').textContent,"
+            " clock: document.getElementById('clock').textContent,"
+            " rows: Array.from(document.querySelectorAll('tr.robot')).map((tr) => tr.id.slice(6)),"
+            " bodies: Array.from(document.querySelectorAll('#map g.robot')).map((g) => g.getAttribute('visibility')),"
+            " goal: !!document.getElementById('goal'), cells: document.querySelectorAll('#map polygon.cell').length,"
+            " feed: Array.from(document.querySelectorAll('#feed li')).map((li) => li.textContent)};"
+        )
+        assert wait_until(lambda: seen()["status"] == "live", 20), log.read_text()
+        assert wait_until(lambda: seen()["bodies"] == ["visible", "visible"], 20), seen()
+        now = seen()
+        assert now["rows"] == ["robot1", "robot2"] and now["goal"] and now["cells"] == 0, now
+        assert re.fullmatch(r"\d+\.\d s", now["clock"]), now["clock"]  # simulated seconds
+        assert wait_until(lambda: {e.split(" ")[1].split(".")[0] for e in seen()["feed"]} == {"robot1", "robot2"}, 30)
+        select = browser.find_element("id", "filter")
+        browser.execute_script("arguments[0].value = 'robot2'; arguments[0].dispatchEvent(new Event('change'));", select)
+        shown = [line.split(" ")[1] for line in seen()["feed"]]
+        assert shown and all(e.startswith("robot2.") for e in shown), shown
+        shoot(browser, tmp_path, "world_view_maze.png")
+        assert wait_until(lambda: seen()["status"].startswith("ended: every robot reached the goal"), 240), log.read_text()
+        assert "still serving the live view" in log.read_text()
+    finally:
+        children.stop([process])
+    assert "ok: every robot reached the goal" in log.read_text()
 
 
 def test_poses_make_frames_of_the_robots_heard_since_the_last(monkeypatch: pytest.MonkeyPatch) -> None:

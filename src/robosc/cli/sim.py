@@ -87,8 +87,8 @@ if TYPE_CHECKING:
 @click.option(
     "--view",
     is_flag=True,
-    help="In a fleet's world: serve the fleet's live view on 127.0.0.1 (see --port) while it runs, "
-    "and after it until Ctrl-C.",
+    help="Serve the world's live view on 127.0.0.1 (see --port) while it runs, and after it until Ctrl-C: "
+    "the map with every robot, and the events (a fleet's coordinator's, or each robot's controller's).",
 )
 @view_port_option
 @include_option
@@ -122,11 +122,6 @@ def sim(
     if importlib.util.find_spec("irsim") is None:
         raise input_problem("robosc sim needs IR-SIM: pip install 'robosc[sim]'")
     fleet = world.fleet is not None
-    if view and not fleet:
-        raise input_problem(
-            f"{world_file}: --view draws a fleet's world (one with 'fleet'); to watch a robot's controller "
-            "here, run robosc view while robosc sim runs"
-        )
     if not fleet:
         crowded = world.room_for(robots or 1)
         if crowded is not None:
@@ -134,7 +129,7 @@ def sim(
     result, plan = supervised(model, include, "a simulation")
     if ros != "none":
         _check_middleware(int(ros))
-    live = _fleet_view(result, world, port) if view else None
+    live = _world_view(result, world, None if fleet else robots or 1, port) if view else None
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-" if fleet else "robosc-sim-"))
     try:
         report = _run(model, result, world, ros, folder, live, fleet, plan=plan, robots=robots, tasks=tasks,
@@ -148,7 +143,8 @@ def sim(
             shutil.rmtree(folder, ignore_errors=True)
     if live is not None:
         live.end(report.why)
-        click.echo(f"still serving the fleet's live view on {live.url}; Ctrl-C to stop", err=True)
+        what = "the fleet's live view" if fleet else "the live view"
+        click.echo(f"still serving {what} on {live.url}; Ctrl-C to stop", err=True)
         _serve_until_interrupted(live)
     raise exit_with(EXIT_OK if report.ok else EXIT_MODEL_ERRORS)
 
@@ -168,7 +164,7 @@ def _run(
     if live is not None and ros == "none":
         hooks.update(_local_feed(live, speed))
     elif live is not None:
-        hooks["on_step"] = _ros_feed(live, folder)
+        hooks["on_step"] = _ros_feed(live, folder, None if fleet else options.get("robots") or 1)
     try:
         if ros == "none":
             return run_world(world, result, None, folder=folder, speed=speed, **hooks, **options)
@@ -219,12 +215,12 @@ def _record(report: Report, world: Any, folder: Path, ros: str) -> None:
 
 
 def _local_feed(live: Any, speed: float) -> dict[str, Any]:
-    """The hooks that feed a fleet's live view in this process, the run paced at ``speed`` times
-    real time (watched)."""
-    from robosc.sim.fleet_view import FleetFeed
+    """The hooks that feed the live view in this process, the run paced at ``speed`` times real
+    time (watched)."""
+    from robosc.sim.fleet_view import WorldFeed
     from robosc.sim.session import pace
 
-    feed = FleetFeed(live.publish)
+    feed = WorldFeed(live.publish)
     started = time.monotonic()
 
     def step(world: Any) -> None:
@@ -234,31 +230,41 @@ def _local_feed(live: Any, speed: float) -> dict[str, Any]:
     return {"on_event": feed.event, "on_step": step}
 
 
-def _fleet_view(result: Any, world: Any, port: int) -> Any:
-    """The fleet's live view, served on 127.0.0.1:``port`` (its URL said)."""
+def _world_view(result: Any, world: Any, robots: int | None, port: int) -> Any:
+    """The world's live view, served on 127.0.0.1:``port`` (its URL said): a fleet's, or that of
+    the ``robots`` of a world with a goal."""
     from robosc.debug.fleet_view import render_fleet_page
     from robosc.runtime.onboard.live_server import LiveView
-    from robosc.sim.fleet_view import fleet_map
+    from robosc.sim.fleet_view import world_map
+    from robosc.sim.report import robot_names
 
+    names = robot_names(robots) if robots is not None else None
     try:
-        live = LiveView(render_fleet_page(result, fleet_map(world)), port=port)
+        live = LiveView(render_fleet_page(result, world_map(world), names), port=port)
     except OSError as exc:
         raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
-    click.echo(f"robosc: the fleet's live view: {live.url}", err=True)
+    what = "the fleet's live view" if robots is None else "the live view"
+    click.echo(f"robosc: {what}: {live.url}", err=True)
     return live
 
 
-def _ros_feed(live: Any, folder: Path) -> Any:
-    """A step hook for a fleet on ROS: the coordinator's events from its event log, and frames."""
-    from robosc.sim.fleet_view import EventTail, FleetFeed
+def _ros_feed(live: Any, folder: Path, robots: int | None) -> Any:
+    """A step hook for a run on ROS: the events from the event logs the nodes write (the
+    coordinator's, or each robot's controller's, named for its robot), and frames."""
+    from robosc.sim.fleet_view import EventTail, WorldFeed
+    from robosc.sim.local import SimulationFrames
+    from robosc.sim.report import robot_names
 
-    tail = EventTail(folder / "events" / "coordinator.jsonl")
-    feed = FleetFeed(live.publish)
+    names = robot_names(robots) if robots is not None else [""]
+    tails = {name: EventTail(folder / "events" / f"{name or 'coordinator'}.jsonl") for name in names}
+    feed = WorldFeed(live.publish)
 
     def step(world: Any) -> None:
-        for record in tail.read():
-            feed.event(record)
-        feed.step(world)
+        for name, tail in tails.items():
+            for record in tail.read():
+                event = record.get("event")
+                feed.event({**record, "event": f"{name}.{event}"} if name and event is not None else record)
+        feed.step(world if robots is None else SimulationFrames(world))
 
     return step
 

@@ -1,4 +1,5 @@
-"""The fleet's live view page: one page for a whole fleet. The map (when a world is known)
+"""The live view page of a world (``robosc sim --view``) and of a fleet's coordinator: one page
+for a whole fleet, or for the robots of a world with a goal. The map (when a world is known)
 with every robot, the person, the door, and each cell's occupancy (a robot in it) and
 reservation (a robot driving into it); a table of the robots, each one's automaton state and
 variables on demand (a click on its row); the other components; the coordinator's events,
@@ -30,10 +31,18 @@ def is_fleet(result: SynthesisResult) -> bool:
 NO_MAP = '<script type="application/json" id="worldmap">null</script>'  # a page without a world's map
 
 
-def page_meta(result: SynthesisResult) -> dict[str, Any]:
+def page_meta(result: SynthesisResult, world_robots: list[str] | None = None) -> dict[str, Any]:
     """What the page knows before any data: the robots (the groups' instances, in order) and the
-    other components, each with its locations and variables."""
+    other components, each with its locations and variables. A model without groups (a robot's
+    controller, one per robot of a world with a goal) shows the ``world_robots`` instead, and
+    no other components (each robot's are its controller's own)."""
     model = result.network.model
+    if not model.groups and world_robots is not None:
+        return {
+            "model": model.name,
+            "robots": [{"name": name, "group": None, "locations": [], "variables": []} for name in world_robots],
+            "others": [],
+        }
     automata = {a.name: a for a in result.network.automata if a.kind is AutomatonKind.COMPONENT}
 
     def entry(component: Any) -> dict[str, Any]:
@@ -52,13 +61,16 @@ def _script_json(value: Any) -> str:
     return json.dumps(value, sort_keys=True, allow_nan=False).replace("</", "<\\/")
 
 
-def render_fleet_page(result: SynthesisResult, world_map: dict[str, Any] | None = None) -> str:
-    """The page (HTML, self-contained) for ``result``'s fleet; ``world_map`` from
-    :func:`robosc.sim.fleet_view.fleet_map` draws the map."""
+def render_fleet_page(
+    result: SynthesisResult, world_map: dict[str, Any] | None = None, robots: list[str] | None = None
+) -> str:
+    """The page (HTML, self-contained) for ``result``'s fleet, or for the ``robots`` of a world
+    with a goal that ``result``'s controller drives; ``world_map`` from
+    :func:`robosc.sim.fleet_view.world_map` draws the map."""
     model = result.network.model
     template = environment("robosc.debug").get_template("fleet.html.j2")
-    page = template.render(model=model.name, source=Path(model.path).name, meta_json=_script_json(page_meta(result)),
-                           map_json="null")
+    meta = _script_json(page_meta(result, robots))
+    page = template.render(model=model.name, source=Path(model.path).name, meta_json=meta, map_json="null")
     return page if world_map is None else with_map(page, world_map)
 
 

@@ -1,10 +1,10 @@
-"""The fleet's live view fed by a simulation or by pose topics: the world's map for the page
-(:func:`fleet_map`); a feed that hands the page a frame of the world (where each robot and
-the person are, the cells they hold) every few simulated tenths of a second, with the
-coordinator's latest state, and each of the coordinator's events as it comes: from the
-coordinator in this process, or read from the event log the coordinator package writes on ROS
-(:class:`EventTail`); and, for ``robosc view --world``, frames made from the poses the robots
-publish (:class:`PoseFeed`)."""
+"""The live view of a world (one robot's or a fleet's) fed by a simulation or by pose topics: the
+world's map for the page (:func:`world_map`); a feed that hands the page a frame of the world
+(where each robot and the person are, the cells they hold) every few simulated tenths of a
+second, with the latest state, and each event as it comes: from the controllers in this
+process, or read from the event logs the generated packages write on ROS (:class:`EventTail`);
+and, for ``robosc view --world``, frames made from the poses the robots publish
+(:class:`PoseFeed`)."""
 
 from __future__ import annotations
 
@@ -18,18 +18,32 @@ from pathlib import Path
 from typing import Any
 
 from robosc.debug.fleet_view import robots_on, with_map
-from robosc.sim.fleet import FleetWorld
 from robosc.sim.fleet_ros import pose_topics
 from robosc.sim.world import World
 
 FRAME_SECONDS = 0.2  # simulated seconds between two frames
 
 
-def fleet_map(world: World) -> dict[str, Any]:
-    """What the page draws of a fleet's world: its size, walls and boxes, the cells (polygons),
-    the waypoints, the door (its two ends), the charger and the radii."""
+def world_map(world: World) -> dict[str, Any]:
+    """What the page draws of a world: its size, walls and boxes and the robots' radius; of a
+    fleet's world the cells (polygons), the waypoints, the door (its two ends), the charger and
+    the person's radius; of a world with a goal the goal (two corners) and the line, if any."""
     fleet = world.fleet
-    assert fleet is not None
+    if fleet is None:
+        (x0, x1), (y0, y1) = world.goal.x, world.goal.y
+        return {
+            "size": list(world.size),
+            "walls": [[list(p) for p in wall] for wall in world.walls],
+            "boxes": [list(b) for b in world.boxes],
+            "cells": {},
+            "waypoints": {},
+            "door": None,
+            "charger": None,
+            "robot_radius": world.robot.radius,
+            "person_radius": None,
+            "goal": [[x0, y0], [x1, y1]],
+            "line": [list(p) for p in world.line.points] if world.line is not None else None,
+        }
     person = fleet.person
     return {
         "size": list(world.size),
@@ -44,9 +58,10 @@ def fleet_map(world: World) -> dict[str, Any]:
     }
 
 
-class FleetFeed:
-    """Feeds ``publish`` (a LiveView's): the coordinator's events (:meth:`event`) and, at most
-    every FRAME_SECONDS simulated, a frame of the world with the latest state (:meth:`step`)."""
+class WorldFeed:
+    """Feeds ``publish`` (a LiveView's): the events (:meth:`event`) and, at most every
+    FRAME_SECONDS simulated, a frame of the world with the latest state (:meth:`step`: ``world``
+    has ``sim`` and ``frame()``, as robosc.sim.fleet.FleetWorld and robosc.sim.local.LocalRun do)."""
 
     def __init__(self, publish: Callable[[dict[str, Any]], None], every: float = FRAME_SECONDS) -> None:
         self.publish = publish
@@ -59,7 +74,7 @@ class FleetFeed:
             self.state = record["state"]
         self.publish(record)
 
-    def step(self, world: FleetWorld) -> None:
+    def step(self, world: Any) -> None:
         now = world.sim.time
         if now + 1e-9 < self.next:
             return
@@ -126,7 +141,7 @@ class PoseFeed:
 
     def page(self, html: str) -> str:
         self.names = robots_on(html)
-        return with_map(html, fleet_map(self.world))
+        return with_map(html, world_map(self.world))
 
     def topics(self) -> list[list[str]]:
         return pose_topics(self.names, person=True, namespace="")  # the world side's, relative

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import math
 import types
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from robosc.sim.report import Report, report_of
+from robosc.sim.report import Report, report_of, robot_names
 from robosc.sim.simulation import Message, Simulation
 
 # the roles of the simulator's topics that take commands, and what they do
@@ -62,10 +63,44 @@ def scan_message(sim: Simulation, ranges: list[float]) -> dict[str, Any]:
     }
 
 
-class LocalRun:
-    """``sim.robots`` instances of the generated ``Robot`` class driving the simulation."""
+def robot_frame(sim: Simulation) -> dict[str, Any]:
+    """What the live view draws of a world with a goal now (as a fleet's frame, robosc.sim.fleet:
+    FleetWorld.frame): each robot's pose and whether it collided; no cells, tasks, person or door."""
+    robots = {
+        name: {
+            "x": round(body.pose.x, 3), "y": round(body.pose.y, 3), "heading": round(body.pose.heading, 3),
+            "doing": None, "cell": "", "into": "", "tasks": None, "collided": status.collided_at is not None,
+        }
+        for name, body, status in zip(robot_names(sim.robots), sim.bodies, sim.status, strict=True)
+    }
+    return {"t": round(sim.time, 3), "robots": robots, "person": None, "door": None}
 
-    def __init__(self, sim: Simulation, module: types.ModuleType, rate: float = 10.0, seed: int = 0) -> None:
+
+class SimulationFrames:
+    """A simulation seen by the live view's feed (robosc.sim.fleet_view.FleetFeed), as a fleet's
+    world is: ``sim`` and ``frame()``."""
+
+    def __init__(self, sim: Simulation) -> None:
+        self.sim = sim
+
+    def frame(self) -> dict[str, Any]:
+        return robot_frame(self.sim)
+
+
+class LocalRun:
+    """``sim.robots`` instances of the generated ``Robot`` class driving the simulation.
+    ``on_event(record)`` hears every robot's events, each named for its robot
+    (``robot1.e_forward``); ``on_step(self)`` is called after each step."""
+
+    def __init__(
+        self,
+        sim: Simulation,
+        module: types.ModuleType,
+        rate: float = 10.0,
+        seed: int = 0,
+        on_event: Callable[[dict[str, Any]], None] | None = None,
+        on_step: Callable[[Any], None] | None = None,
+    ) -> None:
         from robosc.runtime.onboard.values import Data
 
         self.sim = sim
@@ -102,15 +137,41 @@ class LocalRun:
             self.robots.append(robot)
         self._next_tick = 0.0
         self._logs: list[Any] = []
+        self.on_event = on_event
+        self.on_step = on_step
+        if on_event is not None:
+            self._observe([[] for _ in self.robots])
+
+    def frame(self) -> dict[str, Any]:
+        """What the live view draws now (:func:`robot_frame`)."""
+        return robot_frame(self.sim)
 
     def record(self, paths: list[Path]) -> None:
         """Each robot's events to its event log (JSON Lines), stamped with simulated time."""
-        from robosc.runtime.onboard.recording import EventLog, Recorder
+        from robosc.runtime.onboard.recording import EventLog
 
-        for robot, path in zip(self.robots, paths, strict=True):
-            log = EventLog(str(path))
-            self._logs.append(log)
-            robot.observer = Recorder(robot, [log], clock=lambda: self.sim.time)
+        logs = [EventLog(str(path)) for path in paths]
+        self._logs += logs
+        self._observe([[log] for log in logs])
+
+    def _observe(self, sinks: list[list[Any]]) -> None:
+        """Each robot's events to its ``sinks`` and to ``on_event``, stamped with simulated time."""
+        from robosc.runtime.onboard.recording import Recorder
+
+        for robot, name, mine in zip(self.robots, robot_names(len(self.robots)), sinks, strict=True):
+            if self.on_event is not None:
+                mine = [*mine, self._named(name)]
+            robot.observer = Recorder(robot, mine, clock=lambda: self.sim.time)
+
+    def _named(self, name: str) -> Callable[[dict[str, Any]], None]:
+        on_event = self.on_event
+        assert on_event is not None
+
+        def hand(record: dict[str, Any]) -> None:
+            event = record.get("event")
+            on_event({**record, "event": f"{name}.{event}"} if event is not None else record)
+
+        return hand
 
     def close(self) -> None:
         for log in self._logs:
@@ -136,6 +197,8 @@ class LocalRun:
             self._next_tick += 1.0 / self.rate
             for robot in self.robots:
                 robot.tick()
+        if self.on_step is not None:
+            self.on_step(self)
 
     def ended(self, timeout: float) -> tuple[bool, str] | None:
         """Why the run ends now (every robot reached the goal, one collided, ``timeout``

@@ -116,9 +116,11 @@ def run_local(
     ``robots`` robots (default :func:`robots_of`) for ``timeout`` simulated seconds at most
     (default :func:`default_timeout`). In a world with a goal each robot has a controller of its
     own, and with a ``folder`` each robot's events go to ``folder/events/robotK.jsonl``; in a
-    fleet's world the coordinator commands them until each did ``tasks`` tasks, ``jitter`` draws
-    the robots' speeds and start delays, ``on_event(record)`` hears each of its events and
-    ``on_step(world)`` is called with its robosc.sim.fleet.FleetWorld after each step. Raises FleetMisfit when the model's fleet does not
+    fleet's world the coordinator commands them until each did ``tasks`` tasks and ``jitter``
+    draws the robots' speeds and start delays. ``on_event(record)`` hears every event (a
+    robot's controller's named for its robot, ``robot1.e_forward``; the coordinator's as they
+    are) and ``on_step(world)`` is called after each step with what the live view draws
+    (``world.sim`` and ``world.frame()``: robosc.sim.local.LocalRun, robosc.sim.fleet.FleetWorld). Raises FleetMisfit when the model's fleet does not
     fit the world."""
     robots = robots_of(world, module, robots)
     timeout = timeout if timeout is not None else default_timeout(world, robots, tasks)
@@ -127,7 +129,7 @@ def run_local(
     if world.fleet is not None:
         control = FleetRun(world, module, robots, seed, rate, jitter, on_event, on_step, tasks)
     else:
-        control = local = LocalRun(Simulation(world, robots), module, rate=rate, seed=seed)
+        control = local = LocalRun(Simulation(world, robots), module, rate, seed, on_event, on_step)
         if folder is not None:
             local.record(event_logs(folder, robots))
     try:
