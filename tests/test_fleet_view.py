@@ -334,17 +334,22 @@ def test_the_event_log_is_read_as_it_grows_whole_lines_only(tmp_path: Path) -> N
     assert tail.read() == [{"event": "d"}]
 
 
-def test_sim_view_shows_a_world_with_a_goal_and_each_robots_events(browser: Any, tmp_path: Path) -> None:  # noqa: F811
+@pytest.mark.parametrize("ros", ["none", "2"])
+def test_sim_view_shows_a_world_with_a_goal_and_each_robots_events(browser: Any, tmp_path: Path, ros: str) -> None:  # noqa: F811
     """The same view for robots that each have a controller of their own (the maze): the map with
     the goal, every robot on it, each robot's events named for it (the list filters by robot),
-    and the end of the run; a fleet of two robots of one."""
+    and the end of the run; in this process, and on ROS 2 (the events read from each controller
+    node's event log)."""
+    if ros == "2" and not ros2_available():
+        unavailable("ROS 2 (rclpy) is not installed")
     port = free_port()
     log = tmp_path / "sim.log"
+    domain = ["--domain", str(new_domain())] if ros == "2" else []
     with open(log, "wb") as out:
         process = children.start(
             [sys.executable, "-m", "robosc", "sim", str(ROOT / "examples/worlds/maze.yaml"),
-             str(ROOT / "examples/maze_solver.rscd"), "--ros", "none", "--robots", "2", "--view",
-             "--port", str(port), "--speed", "10", "--timeout", "120"],
+             str(ROOT / "examples/maze_solver.rscd"), "--ros", ros, "--robots", "2", "--view",
+             "--port", str(port), "--speed", "10", "--timeout", "120", *domain],
             stdout=out, stderr=subprocess.STDOUT,
         )
     try:
@@ -368,7 +373,7 @@ def test_sim_view_shows_a_world_with_a_goal_and_each_robots_events(browser: Any,
         browser.execute_script("arguments[0].value = 'robot2'; arguments[0].dispatchEvent(new Event('change'));", select)
         shown = [line.split(" ")[1] for line in seen()["feed"]]
         assert shown and all(e.startswith("robot2.") for e in shown), shown
-        shoot(browser, tmp_path, "world_view_maze.png")
+        shoot(browser, tmp_path, f"world_view_maze_{ros}.png")
         assert wait_until(lambda: seen()["status"].startswith("ended: every robot reached the goal"), 240), log.read_text()
         assert "still serving the live view" in log.read_text()
     finally:

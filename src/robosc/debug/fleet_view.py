@@ -70,7 +70,10 @@ def render_fleet_page(
     model = result.network.model
     template = environment("robosc.debug").get_template("fleet.html.j2")
     meta = _script_json(page_meta(result, robots))
-    page = template.render(model=model.name, source=Path(model.path).name, meta_json=meta, map_json="null")
+    fleet = bool(model.groups) or robots is None
+    page = template.render(
+        model=model.name, source=Path(model.path).name, meta_json=meta, map_json="null", fleet=fleet
+    )
     return page if world_map is None else with_map(page, world_map)
 
 
