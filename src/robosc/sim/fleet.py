@@ -35,7 +35,7 @@ from collections.abc import Callable
 from typing import Any
 
 from robosc.record import record
-from robosc.sim.report import Report, report_of
+from robosc.sim.report import FleetFigures, Report, report_of
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import Fleet, Pose, World
 
@@ -389,12 +389,11 @@ class FleetWorld:
     def report(self, ended: tuple[bool, str], tasks: int, ignored: int, wall: float = 0.0, folder: str = "") -> Report:
         """The run's report (robosc.sim.report): ``tasks`` each robot had to do, ``ignored``
         answers the coordinator has no event for."""
-        return report_of(
-            self.sim, ended[0], ended[1], wall, folder, self.names,
-            done=[s.tasks for s in self.status], waiting=[s.waiting for s in self.status],
-            stops=[s.stops for s in self.status], tasks=tasks, ignored=ignored,
-            door_states=tuple(self.door.states) if self.door is not None else (),
+        figures = FleetFigures(
+            tuple(s.tasks for s in self.status), tuple(s.waiting for s in self.status),
+            tuple(s.stops for s in self.status), tasks, ignored, tuple(self.door.states) if self.door is not None else (),
         )
+        return report_of(self.sim, ended[0], ended[1], wall, folder, self.names, figures)
 
 
 def check_size(names: list[str], robots: int) -> None:

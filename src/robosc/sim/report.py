@@ -59,6 +59,20 @@ class Report:
         return self.tasks > 0
 
 
+@record
+class FleetFigures:
+    """What a fleet's world adds to a report: per robot the tasks it did (``done``), the seconds
+    it waited and the times it stopped; the tasks each robot had to do, the answers the
+    coordinator had no event for, and the door's states."""
+
+    done: tuple[int, ...]
+    waiting: tuple[float, ...]
+    stops: tuple[int, ...]
+    tasks: int
+    ignored: int
+    door_states: tuple[tuple[float, str], ...] = ()
+
+
 def robot_names(count: int) -> list[str]:
     return [f"robot{i + 1}" for i in range(count)]
 
@@ -70,20 +84,16 @@ def report_of(
     wall: float,
     folder: str = "",
     names: list[str] | None = None,
-    **fleet: object,
+    fleet: FleetFigures | None = None,
 ) -> Report:
-    """The report of a run of ``sim`` (``names``: the robots', robot1, robot2, ... by default);
-    ``fleet``: a fleet's figures (``tasks``, ``waiting``, ``stops`` per robot as lists, and the
-    report's ``tasks``, ``ignored`` and ``door_states``)."""
+    """The report of a run of ``sim`` (``names``: the robots', robot1, robot2, ... by default;
+    ``fleet``: a fleet's figures, where the robots did tasks)."""
     names = names or robot_names(sim.robots)
-    done = list(fleet.pop("done", [0] * len(names)))  # type: ignore[call-overload]
-    waiting = list(fleet.pop("waiting", [0.0] * len(names)))  # type: ignore[call-overload]
-    stops = list(fleet.pop("stops", [0] * len(names)))  # type: ignore[call-overload]
-    goal = not fleet.get("tasks")  # a fleet's world has no goal: nobody reaches it
     robots = tuple(
         RobotReport(
-            name, s.reached if goal else None, s.distance, s.closest, s.collided_at, s.commands, s.refused, s.closest_robot,
-            done[i], waiting[i], stops[i], s.closest_person,
+            name, s.reached if fleet is None else None, s.distance, s.closest, s.collided_at, s.commands, s.refused,
+            s.closest_robot, fleet.done[i] if fleet else 0, fleet.waiting[i] if fleet else 0.0,
+            fleet.stops[i] if fleet else 0, s.closest_person,
         )
         for i, (name, s) in enumerate(zip(names, sim.status, strict=True))
     )
@@ -95,10 +105,12 @@ def report_of(
         wall,
         folder,
         tuple(sim.status),
+        tasks=fleet.tasks if fleet else 0,
         collisions=sum(1 for s in sim.status if s.collided_at is not None),
+        ignored=fleet.ignored if fleet else 0,
         person=sim.walker is not None,
         person_trajectory=tuple(sim.person_trajectory),
-        **fleet,  # type: ignore[arg-type]
+        door_states=fleet.door_states if fleet else (),
     )
 
 
