@@ -29,33 +29,28 @@ def world_map(world: World) -> dict[str, Any]:
     fleet's world the cells (polygons), the waypoints, the door (its two ends), the charger and
     the person's radius; of a world with a goal the goal (two corners) and the line, if any."""
     fleet = world.fleet
-    if fleet is None:
-        (x0, x1), (y0, y1) = world.goal.x, world.goal.y
-        return {
-            "size": list(world.size),
-            "walls": [[list(p) for p in wall] for wall in world.walls],
-            "boxes": [list(b) for b in world.boxes],
-            "cells": {},
-            "waypoints": {},
-            "door": None,
-            "charger": None,
-            "robot_radius": world.robot.radius,
-            "person_radius": None,
-            "goal": [[x0, y0], [x1, y1]],
-            "line": [list(p) for p in world.line.points] if world.line is not None else None,
-        }
-    person = fleet.person
-    return {
+    drawn: dict[str, Any] = {
         "size": list(world.size),
         "walls": [[list(p) for p in wall] for wall in world.walls],
         "boxes": [list(b) for b in world.boxes],
-        "cells": {name: [list(p) for p in polygon] for name, polygon in fleet.cells},
-        "waypoints": {name: list(p) for name, p in fleet.waypoints},
-        "door": [list(fleet.door.a), list(fleet.door.b)] if fleet.door is not None else None,
-        "charger": list(fleet.charger.at) if fleet.charger is not None else None,
+        "cells": {},
+        "waypoints": {},
+        "door": None,
+        "charger": None,
         "robot_radius": world.robot.radius,
-        "person_radius": person.radius if person is not None else None,
+        "person_radius": None,
     }
+    if fleet is None:
+        (x0, x1), (y0, y1) = world.goal.x, world.goal.y
+        drawn["goal"] = [[x0, y0], [x1, y1]]
+        drawn["line"] = [list(p) for p in world.line.points] if world.line is not None else None
+        return drawn
+    drawn["cells"] = {name: [list(p) for p in polygon] for name, polygon in fleet.cells}
+    drawn["waypoints"] = {name: list(p) for name, p in fleet.waypoints}
+    drawn["door"] = [list(fleet.door.a), list(fleet.door.b)] if fleet.door is not None else None
+    drawn["charger"] = list(fleet.charger.at) if fleet.charger is not None else None
+    drawn["person_radius"] = fleet.person.radius if fleet.person is not None else None
+    return drawn
 
 
 class WorldFeed:
