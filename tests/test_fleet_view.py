@@ -24,10 +24,10 @@ import pytest
 from robosc import children
 from robosc.api import synthesize_file
 from robosc.cli.main import main
-from robosc.debug.fleet_view import render_fleet_page
 from robosc.debug.live import render_page
+from robosc.debug.world_view import render_world_page
 from robosc.runtime.onboard.live_server import LiveView
-from robosc.sim.fleet_view import EventTail, PoseFeed, world_map
+from robosc.sim.view import EventTail, PoseFeed, world_map
 from robosc.sim.world import load_world
 from ros_support import free_port, new_domain, ros2_available, unavailable, wait_until
 from test_live_view import browser  # noqa: F401 (the fixture)
@@ -249,7 +249,7 @@ def page_meta_locations() -> list[str]:
 def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, tmp_path: Path) -> None:  # noqa: F811
     result = synthesize_file(MODEL)
     world = load_world(str(WORLD))
-    view = LiveView(render_fleet_page(result, world_map(world)), port=0)
+    view = LiveView(render_world_page(result, world_map(world)), port=0)
     try:
         browser.get(view.url)
         assert wait_until(lambda: page(browser)["status"] == "live", 10)
@@ -304,7 +304,7 @@ def test_a_robot_unconfirmed_or_without_position_is_marked_stale(browser: Any, t
 
 def test_a_coordinators_page_without_a_world_lists_the_robots_without_a_map(browser: Any) -> None:  # noqa: F811
     result = synthesize_file(MODEL)
-    view = LiveView(render_fleet_page(result), port=0)
+    view = LiveView(render_world_page(result), port=0)
     try:
         browser.get(view.url)
         assert wait_until(lambda: page(browser)["status"] == "live", 10)  # connected: what is published now is live
@@ -384,7 +384,7 @@ def test_sim_view_shows_a_world_with_a_goal_and_each_robots_events(browser: Any,
 def test_poses_make_frames_of_the_robots_heard_since_the_last(monkeypatch: pytest.MonkeyPatch) -> None:
     result = synthesize_file(MODEL)
     feed = PoseFeed(load_world(str(WORLD)))
-    html = feed.page(render_fleet_page(result))  # the coordinator's page, as it publishes it
+    html = feed.page(render_world_page(result))  # the coordinator's page, as it publishes it
     assert '"cells": {"c1"' in html and feed.names == list(ROBOTS)
     assert feed.topics() == [*[[f"{r}.{w}", f"{r}/{w}"] for r in ROBOTS for w in ("pose", "destination")],
                              ["person.pose", "person/pose"]]
@@ -395,7 +395,7 @@ def test_poses_make_frames_of_the_robots_heard_since_the_last(monkeypatch: pytes
     sent: list[dict[str, Any]] = []
     feed.attach(sent.append)
     clock = [100.0]
-    monkeypatch.setattr("robosc.sim.fleet_view.time.monotonic", lambda: clock[0])
+    monkeypatch.setattr("robosc.sim.view.time.monotonic", lambda: clock[0])
     feed.event({"time": 12.5, "event": "bot2.go", "state": {"automata": {"bot2": "to_out2"}}})
     feed.pose("bot2.destination", [6.4, 3.3, 0.0])  # where its move ends: in c2
     feed.pose("person.pose", [6.4, 4.8, 0.0])

@@ -26,8 +26,8 @@ pytest.importorskip("irsim", reason="robosc sim needs IR-SIM (pip install '.[sim
 
 from robosc.api import plan_supervisor, synthesize_file
 from robosc.cli.main import main
-from robosc.debug.fleet_view import render_fleet_page
 from robosc.debug.simulator import load_module
+from robosc.debug.world_view import render_world_page
 from robosc.sim.bridge.protocol import Whereabouts
 from robosc.sim.fleet_ros import reports, run_fleet_ros, wiring
 from robosc.sim.graph import BRIDGE_PACKAGE, Graph
@@ -186,7 +186,7 @@ def test_the_warehouse_fleet_runs_on_ros1_and_robosc_view_draws_it(tmp_path: Pat
     try:
         report = run_fleet_ros(
             load_world(WORLD), plan, load_module(plan), 1, 3, timeout=2400.0, speed=10.0, folder=tmp_path,
-            on_start=on_start, on_step=on_step, page=render_fleet_page(result),
+            on_start=on_start, on_step=on_step, page=render_world_page(result),
             # answers overdue on long moves and charges (1 s wall): the coordinator asks the robots'
             # drivers, who say where they are from the commands they obeyed and answers they gave
             settings={"answer_timeout": 1.0},

@@ -217,8 +217,8 @@ def _record(report: Report, world: Any, folder: Path, ros: str) -> None:
 def _local_feed(live: Any, speed: float) -> dict[str, Any]:
     """The hooks that feed the live view in this process, the run paced at ``speed`` times real
     time (watched)."""
-    from robosc.sim.fleet_view import WorldFeed
     from robosc.sim.session import pace
+    from robosc.sim.view import WorldFeed
 
     feed = WorldFeed(live.publish)
     started = time.monotonic()
@@ -233,14 +233,14 @@ def _local_feed(live: Any, speed: float) -> dict[str, Any]:
 def _world_view(result: Any, world: Any, robots: int | None, port: int) -> Any:
     """The world's live view, served on 127.0.0.1:``port`` (its URL said): a fleet's, or that of
     the ``robots`` of a world with a goal."""
-    from robosc.debug.fleet_view import render_fleet_page
+    from robosc.debug.world_view import render_world_page
     from robosc.runtime.onboard.live_server import LiveView
-    from robosc.sim.fleet_view import world_map
     from robosc.sim.report import robot_names
+    from robosc.sim.view import world_map
 
     names = robot_names(robots) if robots is not None else None
     try:
-        live = LiveView(render_fleet_page(result, world_map(world), names), port=port)
+        live = LiveView(render_world_page(result, world_map(world), names), port=port)
     except OSError as exc:
         raise input_problem(f"live view: cannot serve on 127.0.0.1:{port}: {exc.strerror or exc}") from None
     what = "the fleet's live view" if robots is None else "the live view"
@@ -251,9 +251,9 @@ def _world_view(result: Any, world: Any, robots: int | None, port: int) -> Any:
 def _ros_feed(live: Any, folder: Path, robots: int | None) -> Any:
     """A step hook for a run on ROS: the events from the event logs the nodes write (the
     coordinator's, or each robot's controller's, named for its robot), and frames."""
-    from robosc.sim.fleet_view import EventTail, WorldFeed
     from robosc.sim.local import SimulationFrames
     from robosc.sim.report import robot_names
+    from robosc.sim.view import EventTail, WorldFeed
 
     names = robot_names(robots) if robots is not None else [""]
     tails = {name: EventTail(folder / "events" / f"{name or 'coordinator'}.jsonl") for name in names}

@@ -11,7 +11,7 @@ import click
 from robosc.cli.common import EXIT_OK, exit_with, input_problem, view_port_option
 
 if TYPE_CHECKING:
-    from robosc.sim.fleet_view import PoseFeed
+    from robosc.sim.view import PoseFeed
 
 
 @click.command()
@@ -90,7 +90,7 @@ def _choose(robots: list[str], namespace: str | None, ros: str) -> str:
 
 def _poses(world_file: str) -> PoseFeed:
     """The feed that draws a fleet's world for ``--world`` (its errors: file, line, column)."""
-    from robosc.sim.fleet_view import PoseFeed
+    from robosc.sim.view import PoseFeed
     from robosc.sim.world import WorldError, load_world
 
     try:

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from robosc.codegen.templating import environment
 from robosc.debug.diagram import Diagram, diagrams, svg
-from robosc.debug.fleet_view import is_fleet, render_fleet_page
+from robosc.debug.world_view import is_fleet, render_world_page
 from robosc.record import record
 from robosc.synthesis.result import SynthesisResult
 
@@ -62,6 +62,6 @@ def render_page(result: SynthesisResult) -> str:
 
 
 def live_page(result: SynthesisResult) -> str:
-    """The page a node serves and publishes: a fleet's page (robosc.debug.fleet_view) for a
+    """The page a node serves and publishes: a fleet's page (robosc.debug.world_view) for a
     model with groups of instances, which a fleet's coordinator runs; else the automata's."""
-    return render_fleet_page(result) if is_fleet(result) else render_page(result)
+    return render_world_page(result) if is_fleet(result) else render_page(result)

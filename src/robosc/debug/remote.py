@@ -102,7 +102,7 @@ def find_robots(listener: Listener, timeout: float = 60.0) -> list[str]:
 
 
 class Poses(Protocol):
-    """What a view adds from pose topics (a fleet's map: robosc.sim.fleet_view.PoseFeed)."""
+    """What a view adds from pose topics (a fleet's map: robosc.sim.view.PoseFeed)."""
 
     def page(self, html: str) -> str:
         """The page to serve instead of ``html`` (raises RemoteError where it cannot)."""

@@ -77,7 +77,7 @@ def robot_frame(sim: Simulation) -> dict[str, Any]:
 
 
 class SimulationFrames:
-    """A simulation seen by the live view's feed (robosc.sim.fleet_view.FleetFeed), as a fleet's
+    """A simulation seen by the live view's feed (robosc.sim.view.FleetFeed), as a fleet's
     world is: ``sim`` and ``frame()``."""
 
     def __init__(self, sim: Simulation) -> None:

@@ -17,7 +17,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from robosc.debug.fleet_view import robots_on, with_map
+from robosc.debug.world_view import robots_on, with_map
 from robosc.sim.fleet_ros import pose_topics
 from robosc.sim.world import World
 

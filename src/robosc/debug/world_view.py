@@ -61,14 +61,14 @@ def _script_json(value: Any) -> str:
     return json.dumps(value, sort_keys=True, allow_nan=False).replace("</", "<\\/")
 
 
-def render_fleet_page(
+def render_world_page(
     result: SynthesisResult, world_map: dict[str, Any] | None = None, robots: list[str] | None = None
 ) -> str:
     """The page (HTML, self-contained) for ``result``'s fleet, or for the ``robots`` of a world
     with a goal that ``result``'s controller drives; ``world_map`` from
-    :func:`robosc.sim.fleet_view.world_map` draws the map."""
+    :func:`robosc.sim.view.world_map` draws the map."""
     model = result.network.model
-    template = environment("robosc.debug").get_template("fleet.html.j2")
+    template = environment("robosc.debug").get_template("world.html.j2")
     meta = _script_json(page_meta(result, robots))
     fleet = bool(model.groups) or robots is None
     page = template.render(
