@@ -953,3 +953,41 @@ def test_copies_that_cannot_be_counted_look_for_bad_states_where_the_requirement
     for state in synthesize_explicit(network).supervisor.controlled_states():
         for event in network.events:
             assert fleet.allows(event, state) == everywhere.allows(event, state), event.name
+
+
+def test_a_fleet_of_another_size_without_editing_the_model(tmp_path: Path) -> None:
+    """--instances bot=N (sizes={"bot": N}) makes `component bot[3]` N instances, checked and
+    synthesized as if written so; a name that is no group, an `initial` list of another length
+    and a malformed NAME=N are refused, saying why."""
+    from click.testing import CliRunner
+
+    from robosc.api import check_file, load_model, synthesize_file
+    from robosc.cli.main import cli
+
+    root = Path(__file__).resolve().parent.parent
+    model = root / "docs/models/fleet.rscd"
+    five = load_model(model, sizes={"bot": 5})
+    assert [c.name for c in five.groups["bot"]] == ["bot1", "bot2", "bot3", "bot4", "bot5"]
+    assert [c.name for c in load_model(model).groups["bot"]] == ["bot1", "bot2", "bot3"]
+    assert "5 agents" in synthesize_file(model, sizes={"bot": 5}).fleet
+    written = tmp_path / "five.rscd"
+    written.write_text(model.read_text().replace("component bot[3]", "component bot[5]"))
+    assert load_model(written).groups.keys() == five.groups.keys()
+    assert [c.name for c in load_model(written).components] == [c.name for c in five.components]
+
+    unknown = check_file(model, sizes={"robot": 4})
+    assert not unknown.ok
+    assert "--instances robot=...: 'Cell' declares no component 'robot' with instances" in unknown.render()
+    assert "its groups of instances: 'bot'" in unknown.render()
+
+    starts = tmp_path / "starts.rscd"
+    starts.write_text(model.read_text().replace('namespace "/cell" {', 'namespace "/cell" initial free, free, free {'))
+    assert load_model(starts).name == "Cell"
+    mismatch = check_file(starts, sizes={"bot": 4})
+    assert "3 initial states for 4 instances of 'bot' (--instances bot=4): give one per instance" in mismatch.render()
+
+    runner = CliRunner()
+    done = runner.invoke(cli, ["check", str(model), "--instances", "bot=2"])
+    assert done.exit_code == 0, done.output
+    done = runner.invoke(cli, ["check", str(model), "--instances", "bot2"])
+    assert done.exit_code == 2 and "'bot2' is not NAME=N" in done.output

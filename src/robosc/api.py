@@ -8,7 +8,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
@@ -94,13 +94,18 @@ def _search_paths(path: str, search_paths: Sequence[str | Path]) -> list[Path]:
     return [Path(path).parent if path != "<text>" else Path("."), *(Path(p) for p in search_paths)]
 
 
-def _check(source: SourceFile, search_paths: Sequence[str | Path], reparser: Reparser | None = None) -> CheckResult:
+def _check(
+    source: SourceFile,
+    search_paths: Sequence[str | Path],
+    reparser: Reparser | None = None,
+    sizes: Mapping[str, int] | None = None,
+) -> CheckResult:
     sources = {source.path: source}
     parsed = parse_source(source) if reparser is None else reparser.parse(source)
     if parsed.syntax is None:
         return CheckResult(None, parsed.diagnostics, sources)
     finder = LibraryFinder(_search_paths(source.path, search_paths), sources)
-    resolved = resolve(parsed.syntax, source.path, finder)
+    resolved = resolve(parsed.syntax, source.path, finder, sizes)
     diagnostics = list(resolved.diagnostics)
     if not any(d.code is Code.LIMIT for d in diagnostics):  # else the model is a part, maybe a huge one
         diagnostics += [d for d in run_checks(resolved.model) if d not in diagnostics]
@@ -110,23 +115,35 @@ def _check(source: SourceFile, search_paths: Sequence[str | Path], reparser: Rep
 
 
 def check_text(
-    text: str, path: str = "<text>", search_paths: Sequence[str | Path] = (), reparser: Reparser | None = None
+    text: str,
+    path: str = "<text>",
+    search_paths: Sequence[str | Path] = (),
+    reparser: Reparser | None = None,
+    sizes: Mapping[str, int] | None = None,
 ) -> CheckResult:
     """Parse, resolve and check model text. Libraries are looked up next to ``path``
     and on ``search_paths``. Never raises for bad input: problems are diagnostics.
     A :class:`~robosc.language.reparse.Reparser` given for successive versions of one file
-    (an editor's) parses only what changed; the result is the same."""
-    return _check(SourceFile(path, text), search_paths, reparser)
+    (an editor's) parses only what changed; the result is the same. ``sizes``: how many
+    instances a ``component NAME[N]`` has instead of N, by NAME (``{"bot": 8}``: a fleet of 8
+    without editing the model)."""
+    return _check(SourceFile(path, text), search_paths, reparser, sizes)
 
 
-def check_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> CheckResult:
-    """Read and check a model file. Raises :class:`InputError` if it cannot be read."""
-    return _check(read_source(path), search_paths)
+def check_file(
+    path: str | Path, search_paths: Sequence[str | Path] = (), sizes: Mapping[str, int] | None = None
+) -> CheckResult:
+    """Read and check a model file (``sizes`` as for :func:`check_text`). Raises
+    :class:`InputError` if it cannot be read."""
+    return _check(read_source(path), search_paths, sizes=sizes)
 
 
-def load_model(path: str | Path, search_paths: Sequence[str | Path] = ()) -> Model:
-    """The checked model of a file, or :class:`ModelError` carrying the diagnostics."""
-    result = check_file(path, search_paths)
+def load_model(
+    path: str | Path, search_paths: Sequence[str | Path] = (), sizes: Mapping[str, int] | None = None
+) -> Model:
+    """The checked model of a file (``sizes`` as for :func:`check_text`), or :class:`ModelError`
+    carrying the diagnostics."""
+    result = check_file(path, search_paths, sizes)
     if result.model is None:
         raise ModelError(result)
     return result.model
@@ -203,9 +220,12 @@ def restriction(result: SynthesisResult, event: str) -> Restriction | None:
     return made(result, event)
 
 
-def synthesize_file(path: str | Path, search_paths: Sequence[str | Path] = ()) -> SynthesisResult:
-    """Load, check and synthesize a model file (raises :class:`ModelError` on model errors)."""
-    return synthesize_model(load_model(path, search_paths))
+def synthesize_file(
+    path: str | Path, search_paths: Sequence[str | Path] = (), sizes: Mapping[str, int] | None = None
+) -> SynthesisResult:
+    """Load, check and synthesize a model file (``sizes`` as for :func:`check_text`; raises
+    :class:`ModelError` on model errors)."""
+    return synthesize_model(load_model(path, search_paths, sizes))
 
 
 def __getattr__(name: str) -> Any:

@@ -5,18 +5,29 @@ from __future__ import annotations
 import click
 
 from robosc.api import InputError, check_file
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, width
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    exit_with,
+    include_option,
+    input_problem,
+    instances_option,
+    width,
+)
 from robosc.language.diagnostics import Diagnostic, to_json
 
 
 @click.command()
 @click.argument("files", nargs=-1, type=click.Path(dir_okay=True))
 @include_option
+@instances_option
 @click.option(
     "--format", "output", type=click.Choice(["text", "json"]), default="text", help="How to print diagnostics."
 )
 @click.option("--list-codes", is_flag=True, help="List every diagnostic code and what it means, then exit.")
-def check(files: tuple[str, ...], include: tuple[str, ...], output: str, list_codes: bool) -> None:
+def check(
+    files: tuple[str, ...], include: tuple[str, ...], sizes: dict[str, int], output: str, list_codes: bool
+) -> None:
     """Check RoboSC model files: syntax, references, types and the static rules.
 
     Exits 0 when every file is valid (warnings allowed), 1 when a model has
@@ -35,7 +46,7 @@ def check(files: tuple[str, ...], include: tuple[str, ...], output: str, list_co
     failed = False
     for path in files:
         try:
-            result = check_file(path, include)
+            result = check_file(path, include, sizes)
         except InputError as exc:
             raise input_problem(str(exc)) from None
         diagnostics += result.diagnostics

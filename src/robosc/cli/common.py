@@ -6,7 +6,7 @@ import contextlib
 import signal
 import sys
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -44,6 +44,30 @@ def include_option(f: Callable[..., Any]) -> Callable[..., Any]:
     )(f)
 
 
+def _sizes(context: click.Context, parameter: click.Parameter, values: tuple[str, ...]) -> dict[str, int]:
+    sizes: dict[str, int] = {}
+    for value in values:
+        name, equals, number = value.partition("=")
+        if not equals or not name.isidentifier() or not number.strip().isdigit():
+            raise click.BadParameter(f"'{value}' is not NAME=N (e.g. bot=8)", context, parameter)
+        sizes[name] = int(number)
+    return sizes
+
+
+def instances_option(f: Callable[..., Any]) -> Callable[..., Any]:
+    """--instances NAME=N: how many instances a ``component NAME[N]`` has, without editing the
+    model (a fleet of another size); the ``sizes`` parameter, NAME -> N."""
+    return click.option(
+        "--instances",
+        "sizes",
+        multiple=True,
+        callback=_sizes,
+        metavar="NAME=N",
+        help="Make 'component NAME[...]' N instances, without editing the model (e.g. --instances bot=8; "
+        "repeatable).",
+    )(f)
+
+
 def width(err: bool = False) -> int | None:
     """The width to fit standard output (or error) to: COLUMNS, else the terminal's; None
     when it is piped."""
@@ -71,13 +95,16 @@ def input_problem(message: str) -> click.exceptions.Exit:
     return exit_with(EXIT_USAGE)
 
 
-def load_robot(file: str, include: tuple[str, ...], purpose: str) -> Model:
-    """The checked robot model in ``file``, or the command ends: exit 2 when the file
-    cannot be read or holds a library, exit 1 (diagnostics printed) when it has errors."""
+def load_robot(
+    file: str, include: tuple[str, ...], purpose: str, sizes: Mapping[str, int] | None = None
+) -> Model:
+    """The checked robot model in ``file`` (``sizes``: --instances), or the command ends: exit 2
+    when the file cannot be read or holds a library, exit 1 (diagnostics printed) when it has
+    errors."""
     from robosc.api import InputError, ModelError, load_model
 
     try:
-        model = load_model(file, include)
+        model = load_model(file, include, sizes)
     except InputError as exc:
         raise input_problem(str(exc)) from None
     except ModelError as exc:

@@ -6,7 +6,15 @@ from pathlib import Path
 
 import click
 
-from robosc.cli.common import EXIT_MODEL_ERRORS, EXIT_OK, exit_with, include_option, input_problem, load_robot
+from robosc.cli.common import (
+    EXIT_MODEL_ERRORS,
+    EXIT_OK,
+    exit_with,
+    include_option,
+    input_problem,
+    instances_option,
+    load_robot,
+)
 
 
 def _records(log: str) -> list:  # type: ignore[type-arg]
@@ -50,10 +58,11 @@ def plot(log: str, output: str, title: str | None) -> None:
     "-o", "--output", type=click.Path(file_okay=False), required=True, help="Directory for the .dot and .svg files."
 )
 @include_option
-def diagram(file: str, output: str, include: tuple[str, ...]) -> None:
+@instances_option
+def diagram(file: str, output: str, include: tuple[str, ...], sizes: dict[str, int]) -> None:
     """Draw each component automaton and each communication plant (Graphviz DOT and SVG);
     edges the synthesized supervisor restricts are red, with the condition it added."""
-    model = load_robot(file, include, "a diagram")
+    model = load_robot(file, include, "a diagram", sizes)
     from robosc.api import synthesize_model
     from robosc.debug.diagram import write_diagrams
     from robosc.debug.layout import LayoutError

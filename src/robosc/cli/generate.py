@@ -12,6 +12,7 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
+    instances_option,
     say,
     width,
 )
@@ -87,9 +88,12 @@ def _write_package(
 )
 @RELATIVE
 @include_option
-def generate(file: str, ros: str, mode: str, output: str, relative_names: bool, include: tuple[str, ...]) -> None:
+@instances_option
+def generate(
+    file: str, ros: str, mode: str, output: str, relative_names: bool, include: tuple[str, ...], sizes: dict[str, int]
+) -> None:
     """Generate a ROS package running the synthesized supervisor."""
-    result, plan = supervised(file, include, "code generation")
+    result, plan = supervised(file, include, "code generation", sizes)
     written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result), relative_names)
     say(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
     raise exit_with(EXIT_OK)
@@ -101,14 +105,17 @@ def generate(file: str, ros: str, mode: str, output: str, relative_names: bool, 
 @MODE
 @RELATIVE
 @include_option
-def build(file: str, output: str, mode: str, relative_names: bool, include: tuple[str, ...]) -> None:
+@instances_option
+def build(
+    file: str, output: str, mode: str, relative_names: bool, include: tuple[str, ...], sizes: dict[str, int]
+) -> None:
     """Check, synthesize, and write everything: the ROS 1 and ROS 2 packages, the
     stand-alone supervisor module (with the runtime it needs) and the CIF file."""
     from robosc.codegen.cif import to_cif
     from robosc.codegen.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
     from robosc.codegen.ros import package_name
 
-    result, plan = supervised(file, include, "a build")
+    result, plan = supervised(file, include, "a build", sizes)
     out = Path(output)
     say(
         f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "

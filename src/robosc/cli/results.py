@@ -6,6 +6,7 @@ none exists)."""
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -197,10 +198,12 @@ def _print_cross_check(
         show(f"    {difference}", "      ")
 
 
-def supervised(file: str, include: tuple[str, ...], purpose: str) -> tuple[SynthesisResult, Plan]:
+def supervised(
+    file: str, include: tuple[str, ...], purpose: str, sizes: Mapping[str, int] | None = None
+) -> tuple[SynthesisResult, Plan]:
     """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
     printed) when no supervisor exists."""
-    model = load_robot(file, include, purpose)
+    model = load_robot(file, include, purpose, sizes)
     with synthesis_running() as progress:
         result = synthesize_model(model, progress=progress)
     if not result.ok:

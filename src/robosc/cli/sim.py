@@ -18,6 +18,7 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
+    instances_option,
     view_port_option,
 )
 from robosc.cli.results import supervised
@@ -92,6 +93,7 @@ if TYPE_CHECKING:
 )
 @view_port_option
 @include_option
+@instances_option
 def sim(
     world_file: str,
     model: str,
@@ -107,6 +109,7 @@ def sim(
     view: bool,
     port: int,
     include: tuple[str, ...],
+    sizes: dict[str, int],
 ) -> None:
     """Drive robots in a 2D WORLD with the controller synthesized from MODEL, end to end:
     the controller package is generated, the simulator's node and one controller node per
@@ -126,7 +129,7 @@ def sim(
         crowded = world.room_for(robots or 1)
         if crowded is not None:
             raise input_problem(crowded)
-    result, plan = supervised(model, include, "a simulation")
+    result, plan = supervised(model, include, "a simulation", sizes)
     if ros != "none":
         _check_middleware(int(ros))
     live = _world_view(result, world, None if fleet else robots or 1, port) if view else None

@@ -15,6 +15,7 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
+    instances_option,
     say,
     view_port_option,
 )
@@ -54,6 +55,7 @@ HELP = """commands:
 @view_port_option
 @click.option("--quiet", is_flag=True, help="Print only problems and the final state.")
 @include_option
+@instances_option
 def simulate(
     file: str,
     script: str | None,
@@ -65,6 +67,7 @@ def simulate(
     port: int,
     quiet: bool,
     include: tuple[str, ...],
+    sizes: dict[str, int],
 ) -> None:
     """Run the generated supervisor without ROS, checking every step.
 
@@ -72,7 +75,7 @@ def simulate(
     reachable; the simulation stops with a report (exit 1) if not."""
     if script is not None and steps is not None:
         raise input_problem("use either --script or --random, not both")
-    result, plan = supervised(file, include, "simulation")
+    result, plan = supervised(file, include, "simulation", sizes)
     from robosc.debug.simulator import Simulator, Violation
 
     sinks: list[Callable[[dict[str, Any]], None]] = []

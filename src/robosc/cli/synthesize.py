@@ -11,6 +11,7 @@ from robosc.cli.common import (
     exit_with,
     include_option,
     input_problem,
+    instances_option,
     load_robot,
     say,
     synthesis_running,
@@ -40,6 +41,7 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
 @click.command()
 @click.argument("file", type=click.Path())
 @include_option
+@instances_option
 @click.option("--json", "as_json_output", is_flag=True, help="Print the result as JSON.")
 @click.option("--explicit", is_flag=True, help="Use explicit-state synthesis (small models; for cross-checking).")
 @click.option("--show-network", is_flag=True, help="Also print the automata network that synthesis works on.")
@@ -98,6 +100,7 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
 def synthesize(
     file: str,
     include: tuple[str, ...],
+    sizes: dict[str, int],
     as_json_output: bool,
     explicit: bool,
     show_network: bool,
@@ -111,7 +114,7 @@ def synthesize(
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
-    model = load_robot(file, include, "synthesis")
+    model = load_robot(file, include, "synthesis", sizes)
     options = SynthesisOptions(order, reorder, fleet, edges, explore, forward)
     comparison = None
     if explicit:

@@ -397,9 +397,13 @@ class FleetWorld:
 
 
 def check_size(names: list[str], robots: int) -> None:
+    """The model's fleet (``names``, its instances that take ``go``) has ``robots`` robots, or
+    FleetMisfit says so and how to run the model with that many without editing it."""
     if len(names) != robots:
+        group = names[0].rstrip("0123456789") if names else "bot"
         raise FleetMisfit(
-            f"the model's fleet has {len(names)} robots ({', '.join(names) or 'none'}) and {robots} were asked for"
+            f"the model's fleet has {len(names)} robots ({', '.join(names) or 'none'}) and {robots} were asked for; "
+            f"--instances {group}={robots} makes the model's fleet {robots} robots without editing it"
         )
 
 

@@ -7,6 +7,7 @@ provide statements, which may name anything declared before.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any, Protocol
 
 from robosc.language import model as m
@@ -87,9 +88,10 @@ class _Entry:
 
 
 class _Resolver:
-    def __init__(self, file: s.FileSyntax, libraries: LibraryProvider) -> None:
+    def __init__(self, file: s.FileSyntax, libraries: LibraryProvider, sizes: Mapping[str, int]) -> None:
         self.file = file
         self.libraries = libraries
+        self.sizes = sizes
         self.reporter = Reporter()
         self.scope = scope_of(file, self.reporter)
         self.entries: dict[str, _Entry] = {}
@@ -102,7 +104,7 @@ class _Resolver:
         for definition in self.file.definitions:
             if not isinstance(definition, (s.LocalComponentSyntax, s.ImportedComponentSyntax)):
                 continue
-            declared = instances(definition, self.reporter)
+            declared = instances(definition, self.reporter, self.sizes.get(definition.name.text))
             if definition.instances is not None and definition.instances.count is not None:
                 self.groups.setdefault(definition.name.text, [i.name for i in declared])
             unit = None
@@ -115,6 +117,15 @@ class _Resolver:
                 else:
                     entry = self._import(definition, unit, instance)
                 self._add(instance.name, entry)
+        unknown = sorted(set(self.sizes) - set(self.groups))
+        if unknown:  # asked for on the command line: said at the model's name
+            groups = ", ".join(f"'{g}'" for g in self.groups) or "none"
+            self.reporter.error(
+                self.file.name.span,
+                f"--instances {unknown[0]}=...: '{self.file.name.text}' declares no component '{unknown[0]}' with "
+                f"instances (component {unknown[0]}[N]); its groups of instances: {groups}",
+                Code.INSTANCES,
+            )
 
     def _add(self, name: str, entry: _Entry) -> None:
         self.order.append(entry)
@@ -237,9 +248,12 @@ class _Resolver:
         return tuple(requirements), tuple(provides)
 
 
-def resolve(file: s.FileSyntax, path: str, libraries: LibraryProvider) -> ResolveResult:
-    """Resolve a parsed robot or library; unresolvable parts are reported and left out."""
-    resolver = _Resolver(file, libraries)
+def resolve(
+    file: s.FileSyntax, path: str, libraries: LibraryProvider, sizes: Mapping[str, int] | None = None
+) -> ResolveResult:
+    """Resolve a parsed robot or library; unresolvable parts are reported and left out.
+    ``sizes``: how many instances a ``component NAME[N]`` has instead of N, by NAME."""
+    resolver = _Resolver(file, libraries, sizes or {})
     resolver.declare_components()
     components = resolver.components()
     requirements, provides = resolver.statements()

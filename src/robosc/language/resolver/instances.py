@@ -33,8 +33,11 @@ class Instance:
     initial: s.Name | None  # the state it starts in instead of the automaton's initial one
 
 
-def instances(syntax: s.LocalComponentSyntax | s.ImportedComponentSyntax, reporter: Reporter) -> list[Instance]:
-    """The components that ``syntax`` declares: one, or one per instance."""
+def instances(
+    syntax: s.LocalComponentSyntax | s.ImportedComponentSyntax, reporter: Reporter, size: int | None = None
+) -> list[Instance]:
+    """The components that ``syntax`` declares: one, or one per instance; ``size``: how many
+    instances a ``component NAME[N]`` has instead of N (asked for on the command line)."""
     name = syntax.name.text
     options = syntax.instances
     if options is None:
@@ -58,18 +61,20 @@ def instances(syntax: s.LocalComponentSyntax | s.ImportedComponentSyntax, report
             )
         initial = options.initial[0] if options.initial else None
         return [Instance(name, None, None, namespace.rstrip("/") or "/" if namespace else None, initial)]
-    count = options.count.value
+    count = options.count.value if size is None else size
+    asked = "" if size is None else f" (--instances {name}={size})"
     if not 1 <= count <= MAX_INSTANCES:
         reporter.error(
             options.count.span,
-            f"{count} instances of '{name}': a component has from 1 to {MAX_INSTANCES} instances",
+            f"{count} instances of '{name}'{asked}: a component has from 1 to {MAX_INSTANCES} instances",
             Code.INSTANCES if count < 1 else Code.LIMIT,
         )
         return []
     if options.initial and len(options.initial) != count:
         reporter.error(
             options.initial[min(len(options.initial), count) - 1].span if len(options.initial) > count else options.span,
-            f"{len(options.initial)} initial states for {count} instances of '{name}': give one per instance, in order",
+            f"{len(options.initial)} initial states for {count} instances of '{name}'{asked}: give one per instance, "
+            "in order",
             Code.INSTANCES,
         )
     prefix = "" if namespace is None else namespace.rstrip("/") + "/"
