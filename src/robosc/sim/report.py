@@ -36,7 +36,7 @@ class Report:
     """One run: whether it ended well and why, each robot's figures, the simulated and the real
     time it took, where its files are (``folder``), and what the animation draws (``status``,
     the person's trajectory, the door's states). ``tasks``: the tasks each robot of a fleet had to
-    do (0: a world with a goal); ``collisions`` how many robots collided; ``ignored`` the answers
+    do (None: a world with a goal); ``collisions`` how many robots collided; ``ignored`` the answers
     the coordinator has no event for."""
 
     ok: bool
@@ -46,7 +46,7 @@ class Report:
     wall: float  # seconds of real time, from the first step
     folder: str = ""  # where the packages, logs and recordings are
     status: tuple[Status, ...] = field(default=(), compare=False, repr=False)
-    tasks: int = 0
+    tasks: int | None = None
     collisions: int = 0
     ignored: int = 0
     person: bool = False  # the world has a person (each robot's closest_person is its closest approach)
@@ -56,7 +56,7 @@ class Report:
     @property
     def fleet(self) -> bool:
         """Whether the run was a fleet's (robots doing tasks, not driving to a goal)."""
-        return self.tasks > 0
+        return self.tasks is not None
 
 
 @record
@@ -105,7 +105,7 @@ def report_of(
         wall,
         folder,
         tuple(sim.status),
-        tasks=fleet.tasks if fleet else 0,
+        tasks=fleet.tasks if fleet else None,
         collisions=sum(1 for s in sim.status if s.collided_at is not None),
         ignored=fleet.ignored if fleet else 0,
         person=sim.walker is not None,

@@ -88,6 +88,12 @@ def robots_of(world: World, module: types.ModuleType, robots: int | None) -> int
     return len(instances(module)) if world.fleet is not None else 1
 
 
+def check_tasks(tasks: int) -> None:
+    """ValueError unless each robot of a fleet has at least one task to do."""
+    if tasks < 1:
+        raise ValueError(f"tasks: each robot has at least 1 task to do ({tasks} given)")
+
+
 class Control(Protocol):
     """What commands the world's robots in this process: a controller per robot
     (robosc.sim.local.LocalRun) or a fleet's coordinator (robosc.sim.fleet.FleetRun)."""
@@ -124,6 +130,7 @@ def run_local(
     fit the world."""
     robots = robots_of(world, module, robots)
     timeout = timeout if timeout is not None else default_timeout(world, robots, tasks)
+    check_tasks(tasks)
     control: Control
     local: LocalRun | None = None
     if world.fleet is not None:
@@ -180,6 +187,7 @@ def run_ros(
     (then ``robosc view`` can watch the robots)."""
     robots = robots_of(world, module, robots)
     timeout = timeout if timeout is not None else default_timeout(world, robots, tasks)
+    check_tasks(tasks)
     if world.fleet is not None:
         return run_fleet_ros(
             world, plan, module, ros, robots, tasks=tasks, timeout=timeout, speed=speed, rate=rate, seed=seed,
