@@ -135,8 +135,13 @@ def sim(
     live = _world_view(result, world, None if fleet else robots or 1, port) if view else None
     folder = Path(record) if record else Path(tempfile.mkdtemp(prefix="robosc-fleet-" if fleet else "robosc-sim-"))
     try:
-        report = _run(model, result, world, ros, folder, live, fleet, plan=plan, robots=robots, tasks=tasks,
-                      timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain)
+        try:
+            report = _run(model, result, world, ros, folder, live, fleet, plan=plan, robots=robots, tasks=tasks,
+                          timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain)
+        except BaseException:  # no run (a misfit, the middleware, Ctrl-C): nothing to serve
+            if live is not None:
+                live.close()
+            raise
         click.echo(report_table(report, _title(report, world, ros)))
         click.echo(verdict(report))
         if record:
@@ -254,7 +259,7 @@ def _world_view(result: Any, world: Any, robots: int | None, port: int) -> Any:
 def _ros_feed(live: Any, folder: Path, robots: int | None) -> Any:
     """A step hook for a run on ROS: the events from the event logs the nodes write (the
     coordinator's, or each robot's controller's, named for its robot), and frames."""
-    from robosc.sim.local import SimulationFrames
+    from robosc.sim.local import SimulationFrames, named
     from robosc.sim.report import robot_names
     from robosc.sim.view import EventTail, WorldFeed
 
@@ -265,8 +270,7 @@ def _ros_feed(live: Any, folder: Path, robots: int | None) -> Any:
     def step(world: Any) -> None:
         for name, tail in tails.items():
             for record in tail.read():
-                event = record.get("event")
-                feed.event({**record, "event": f"{name}.{event}"} if name and event is not None else record)
+                feed.event(named(record, name) if name else record)
         feed.step(world if robots is None else SimulationFrames(world))
 
     return step

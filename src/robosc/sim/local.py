@@ -63,6 +63,13 @@ def scan_message(sim: Simulation, ranges: list[float]) -> dict[str, Any]:
     }
 
 
+def named(record: dict[str, Any], robot: str) -> dict[str, Any]:
+    """An event record of ``robot``'s controller with the event named for the robot
+    (``robot2.e_forward``), as the live view lists a world's events; a state record as it is."""
+    event = record.get("event")
+    return {**record, "event": f"{robot}.{event}"} if event is not None else record
+
+
 def robot_frame(sim: Simulation) -> dict[str, Any]:
     """What the live view draws of a world with a goal now (as a fleet's frame, robosc.sim.fleet:
     FleetWorld.frame): each robot's pose and whether it collided; no cells, tasks, person or door."""
@@ -166,12 +173,7 @@ class LocalRun:
     def _named(self, name: str) -> Callable[[dict[str, Any]], None]:
         on_event = self.on_event
         assert on_event is not None
-
-        def hand(record: dict[str, Any]) -> None:
-            event = record.get("event")
-            on_event({**record, "event": f"{name}.{event}"} if event is not None else record)
-
-        return hand
+        return lambda record: on_event(named(record, name))
 
     def close(self) -> None:
         for log in self._logs:
