@@ -277,6 +277,7 @@ def run_world(
     tasks: int = 1,
     on_event: Callable[[dict[str, Any]], None] | None = None,
     on_step: Callable[[Any], None] | None = None,
+    policy: str = "purpose",
 ) -> Report:
     """Drive the robots of a 2D world (a world file or a loaded one) with the controller of a
     successful synthesis ``result``: on ROS ``ros`` (1 or 2: the generated package on a private
@@ -286,8 +287,10 @@ def run_world(
     and the run ends when every robot reached the goal (``report.ok``), one touched something,
     or ``timeout`` simulated seconds passed (default 300). In a fleet's world (one with
     ``fleet``) the model is the fleet's coordinator (robots: the model's, by default) and the
-    run ends when every robot did ``tasks`` tasks, at a collision, a deadlock or the time-out
-    (default 300 s per robot and task); ``on_event(record)`` hears the coordinator's events in
+    run ends when the tasks the world gives (``tasks`` per robot, its ``stops`` each) are done,
+    at a collision, a deadlock or the time-out (default 300 s per robot and task); ``policy``
+    is how the coordinator chooses among what its supervisor allows ("purpose": for the tasks,
+    fairly; "random": at random); ``on_event(record)`` hears the coordinator's events in
     this process and ``on_step(world)`` is called after every step. Either way the result is
     one :class:`robosc.sim.report.Report`.
 
@@ -313,9 +316,10 @@ def run_world(
                 on_note(note)
     if ros is None:
         return run_local(
-            loaded, module, robots, timeout, rate, seed, folder, tasks, on_event=on_event, on_step=on_step
+            loaded, module, robots, timeout, rate, seed, folder, tasks, on_event=on_event, on_step=on_step,
+            policy=policy,
         )
     return run_ros(
         loaded, plan, module, ros, robots, timeout, speed, rate, seed, folder, domain, on_step=on_step,
-        on_start=on_start, page=page, tasks=tasks,
+        on_start=on_start, page=page, tasks=tasks, policy=policy,
     )

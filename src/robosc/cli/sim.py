@@ -53,6 +53,14 @@ if TYPE_CHECKING:
     help="In a fleet's world: the tasks each robot must do before the run ends well.",
 )
 @click.option(
+    "--policy",
+    type=click.Choice(["purpose", "random"]),
+    default="purpose",
+    show_default=True,
+    help="In a fleet's world: how the coordinator chooses among what its supervisor allows: purpose "
+    "(what gets the tasks done, the robot waiting longest first) or random (for testing).",
+)
+@click.option(
     "--timeout",
     type=click.FloatRange(min=0.0, min_open=True, max=86400.0),
     default=None,
@@ -100,6 +108,7 @@ def sim(
     ros: str,
     robots: int | None,
     tasks: int,
+    policy: str,
     timeout: float | None,
     speed: float,
     rate: float,
@@ -137,7 +146,7 @@ def sim(
     try:
         try:
             report = _run(model, result, world, ros, folder, live, fleet, plan=plan, robots=robots, tasks=tasks,
-                          timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain)
+                          policy=policy, timeout=timeout, speed=speed, rate=rate, seed=seed, domain=domain)
         except BaseException:  # no run (a misfit, the middleware, Ctrl-C): nothing to serve
             if live is not None:
                 live.close()

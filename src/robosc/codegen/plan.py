@@ -17,6 +17,7 @@ rules ``enum<N>_<Enum>``.
 from __future__ import annotations
 
 from robosc.codegen.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
+from robosc.codegen.routes import Driver, Route, Shape, drivers, routes
 from robosc.language import model as m
 from robosc.language.source import Span
 from robosc.plant.domains import initial_value
@@ -73,18 +74,6 @@ class Communication:
     def interface(self) -> str | None:
         """``package/Type`` of the linked interface."""
         return f"{self.package}/{self.ros_type}" if self.package and self.ros_type else None
-
-
-@record
-class Driver:
-    """What a component's driver does for the node, as the model says it (for the generated
-    README): the locations its report names, and after each command (an incoming message), the
-    messages the model expects the driver to send back (the uncontrollable events that leave
-    the locations the command leads to)."""
-
-    component: str
-    locations: tuple[str, ...]
-    answers: tuple[tuple[str, tuple[str, ...]], ...]  # (command's communication, the answers' communications)
 
 
 @record
@@ -195,6 +184,8 @@ class Plan:
     # (attribute, fields): the values of fields a count reads, tallied at each evaluation of _allowed
     tallies: tuple[tuple[str, tuple[str, ...]], ...] = ()
     drivers: tuple[Driver, ...] = ()  # per component automaton, in network order
+    routes: tuple[Route, ...] = ()  # per component automaton with a location field, in network order
+    shapes: tuple[Shape, ...] = ()
 
     @property
     def controllable(self) -> tuple[EventPlan, ...]:
@@ -727,33 +718,6 @@ class _Planner:
                     found |= self.reach.get(node.variable, frozenset())
         return tuple(sorted(found))
 
-    def drivers(self) -> tuple[Driver, ...]:
-        """Each component's :class:`Driver`: what its report names, and what answers each command."""
-        out = []
-        for automaton in self.network.automata:
-            if automaton.kind is not AutomatonKind.COMPONENT or automaton.component is None:
-                continue
-            answers: dict[str, list[str]] = {}
-            for edge in automaton.edges:
-                event, c = edge.event, edge.event.communication
-                if not event.controllable or event.kind is not K.MESSAGE or c is None:
-                    continue
-                found = answers.setdefault(c.name, [])
-                for after in automaton.edges:
-                    reply = after.event.communication
-                    leaves = after.source is edge.target and after.target is not edge.target
-                    answer = not after.event.controllable and after.event.kind is K.MESSAGE
-                    if leaves and answer and reply is not None and reply.name not in found:
-                        found.append(reply.name)
-            out.append(
-                Driver(
-                    automaton.component.name,
-                    tuple(location.name for location in automaton.locations),
-                    tuple((command, tuple(replies)) for command, replies in answers.items()),
-                )
-            )
-        return tuple(out)
-
     def build(self) -> Plan:
         self.reach = self.data_reach()
         self.communications = {
@@ -778,7 +742,8 @@ class _Planner:
             tuple((f"{v.owner}.{v.name}", self.names.variables[v]) for v in self.network.variables),
             tuple((name, code) for code, name in (self.names.shared or {}).items()),
             tuple((name, fields) for fields, name in (self.guards.tallies or {}).items()),
-            self.drivers(),
+            drivers(self.network),
+            *routes(self.network, self.automaton_field),
         )
 
 

@@ -35,6 +35,7 @@ from collections.abc import Callable
 from typing import Any
 
 from robosc.record import record
+from robosc.runtime.onboard.tasks import DONE, FAILED, Dispatcher
 from robosc.sim.report import FleetFigures, Report, report_of
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import Fleet, Pose, World
@@ -334,14 +335,18 @@ class FleetWorld:
                 if status.collided_at is None:
                     status.collided_at, status.touched = self.sim.time, f"the door ({self.door.state})"
 
-    def verdict(self, tasks: int, timeout: float, stall: float) -> tuple[bool, str] | None:
+    def verdict(self, tasks: int, timeout: float, stall: float, done: bool | None = None) -> tuple[bool, str] | None:
+        """Why the run ends now, or None: ``done`` says whether every task given is done (None:
+        no task was given; then each robot must have driven its legs ``tasks`` times)."""
         sim = self.sim
         hit = [(self.names[i], s.touched) for i, s in enumerate(sim.status) if s.collided_at is not None]
         if hit:
             named = {f"robot{i + 1}": name for i, name in enumerate(self.names)}
             said = "; ".join(f"{name} touched {named.get(what, what)}" for name, what in hit)
             return False, f"collision: {said} at t = {sim.time:.1f} s"
-        if all(s.tasks >= tasks for s in self.status):
+        if done:
+            return True, f"every task given was done ({tasks * len(self.names)})"
+        if done is None and all(s.tasks >= tasks for s in self.status):
             return True, f"every robot did its {tasks} task(s)"
         if sim.time - self.progress >= stall:
             where = "; ".join(self.whereabouts(i) for i in range(len(self.names)))
@@ -415,6 +420,7 @@ class FleetRun:
         self, world: World, module: types.ModuleType, robots: int, seed: int = 0, rate: float = 10.0,
         jitter: Jitter | None = None, on_event: Callable[[dict[str, Any]], None] | None = None,
         on_step: Callable[[FleetWorld], None] | None = None, tasks: int = 1, stall: float = STALL,
+        policy: str = "purpose",
     ) -> None:
         names = instances(module)
         check_size(names, robots)
@@ -442,6 +448,18 @@ class FleetRun:
             self.coordinator.observer = observe
         self.on_step = on_step  # called with the world's side after every step
         self._next_tick = 0.0
+        # the world gives its tasks (fleet.stops, `tasks` per robot) through the coordinator's
+        # run-time interface, as an operator would; a world without stops gives none, and the
+        # coordinator then chooses at random (each robot drives its legs `tasks` times)
+        self.dispatcher: Dispatcher | None = None
+        stops = self.world.fleet.stops
+        if stops:
+            self.dispatcher = Dispatcher(self.coordinator, policy)
+            self.coordinator.tasks = self.dispatcher
+            for _ in range(tasks * robots):
+                task = self.dispatcher.submit(stops)
+                if task.state == FAILED:
+                    raise FleetMisfit(f"{world.path}: the world's task {list(stops)} is refused: {task.why}")
 
     def step(self) -> None:
         for name, data in self.world.step():
@@ -457,7 +475,10 @@ class FleetRun:
 
     def ended(self, timeout: float) -> tuple[bool, str] | None:
         """Why the run ends now, or None (robosc.sim.run's loop asks after every step)."""
-        return self.world.verdict(self.tasks, timeout, self.stall)
+        done = None
+        if self.dispatcher is not None:
+            done = self.dispatcher.counts()[DONE] == len(self.dispatcher.tasks)
+        return self.world.verdict(self.tasks, timeout, self.stall, done)
 
     def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report:
         return self.world.report(ended, self.tasks, self.ignored, wall, folder)

@@ -146,6 +146,7 @@ def run_fleet_ros(
     on_step: Callable[[FleetWorld], None] | None = None,
     page: str | None = None,
     settings: dict[str, object] | None = None,
+    policy: str = "purpose",
 ) -> Report:
     """The coordinator package on ROS ``ros`` (1 or 2) commanding ``world``'s fleet; the run
     ends as FleetRun's does (robosc.sim.fleet), or when the coordinator dies. ``on_start(graph)``

@@ -117,13 +117,15 @@ def run_local(
     jitter: Jitter | None = None,
     on_event: Callable[[dict[str, Any]], None] | None = None,
     on_step: Callable[[Any], None] | None = None,
+    policy: str = "purpose",
 ) -> Report:
     """The generated supervisors (``module``) driving the world's robots in this process:
     ``robots`` robots (default :func:`robots_of`) for ``timeout`` simulated seconds at most
     (default :func:`default_timeout`). In a world with a goal each robot has a controller of its
     own, and with a ``folder`` each robot's events go to ``folder/events/robotK.jsonl``; in a
-    fleet's world the coordinator commands them until each did ``tasks`` tasks and ``jitter``
-    draws the robots' speeds and start delays. ``on_event(record)`` hears every event (a
+    fleet's world the coordinator commands them until the world's tasks are done (``tasks`` per
+    robot, given at run time; ``policy``: how the coordinator chooses, robosc.runtime.onboard.tasks)
+    and ``jitter`` draws the robots' speeds and start delays. ``on_event(record)`` hears every event (a
     robot's controller's named for its robot, ``robot1.e_forward``; the coordinator's as they
     are) and ``on_step(world)`` is called after each step with what the live view draws
     (``world.sim`` and ``world.frame()``: robosc.sim.local.LocalRun, robosc.sim.fleet.FleetWorld). Raises FleetMisfit when the model's fleet does not
@@ -134,7 +136,7 @@ def run_local(
     control: Control
     local: LocalRun | None = None
     if world.fleet is not None:
-        control = FleetRun(world, module, robots, seed, rate, jitter, on_event, on_step, tasks)
+        control = FleetRun(world, module, robots, seed, rate, jitter, on_event, on_step, tasks, policy=policy)
     else:
         control = local = LocalRun(Simulation(world, robots), module, rate, seed, on_event, on_step)
         if folder is not None:
@@ -176,6 +178,7 @@ def run_ros(
     page: str | None = None,
     tasks: int = 1,
     jitter: Jitter | None = None,
+    policy: str = "purpose",
 ) -> Report:
     """The generated controller package on ROS ``ros`` (1 or 2): in a world with a goal one node
     per robot, in a fleet's world one coordinator and a driver node per robot
@@ -192,7 +195,7 @@ def run_ros(
         return run_fleet_ros(
             world, plan, module, ros, robots, tasks=tasks, timeout=timeout, speed=speed, rate=rate, seed=seed,
             folder=folder, domain=domain, on_start=on_start, trace=trace, jitter=jitter, on_step=on_step, page=page,
-            settings=params,
+            settings=params, policy=policy,
         )
     if folder is None:
         folder = Path(tempfile.mkdtemp(prefix="robosc-sim-"))

@@ -137,6 +137,9 @@ class Fleet:
     charger: Charger | None = None
     person: Person | None = None
     tasks: tuple[tuple[tuple[str, ...], ...], ...] = ()  # robot k's task: tasks[k - 1] (in turn)
+    # one task in the model's terms, as the world gives it to the coordinator (--tasks K: K per
+    # robot): the locations of a robot's automaton it must reach in turn; () gives none
+    stops: tuple[str, ...] = ()
 
     def task_of(self, robot: int) -> tuple[tuple[str, ...], ...]:
         """The legs of robot ``robot``'s task (0 for the first robot)."""
@@ -435,7 +438,9 @@ def _world(r: _Reader, root: Any) -> World:
 
 
 def _fleet(r: _Reader, node: Any) -> Fleet:
-    top = r.mapping(node, "fleet", {"waypoints", "task", "tasks", "cells", "lane", "door", "charger", "person"})
+    top = r.mapping(
+        node, "fleet", {"waypoints", "task", "tasks", "cells", "lane", "door", "charger", "person", "stops"}
+    )
     if "waypoints" not in top:
         raise r.fail(node, "the fleet needs 'waypoints'")
     if ("task" in top) == ("tasks" in top):
@@ -477,7 +482,12 @@ def _fleet(r: _Reader, node: Any) -> Fleet:
             r.number(c["seconds"], "charger seconds", positive=True) if "seconds" in c else 3.0,
         )
     person = _person(r, top["person"]) if "person" in top else None
-    return Fleet(tuple(waypoints.items()), task, tuple(cells), lane, door, charger, person, tasks)
+    stops: tuple[str, ...] = ()
+    if "stops" in top:
+        stops = tuple(r.text(s, "a stop (a location of the robot's automaton)") for s in r.sequence(top["stops"], "stops"))
+        if not stops:
+            raise r.fail(top["stops"], "'stops' needs at least one location")
+    return Fleet(tuple(waypoints.items()), task, tuple(cells), lane, door, charger, person, tasks, stops)
 
 
 def _task(r: _Reader, node: Any, waypoints: dict[str, tuple[float, float]]) -> tuple[tuple[str, ...], ...]:

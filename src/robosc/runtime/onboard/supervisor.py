@@ -58,6 +58,7 @@ from .effects import Effects
 from .health import DATA_TIMEOUT
 from .reading import Unreadable, flag, isfinite, num, text, unreadable_data, whole
 from .tables import ANY, REFUSED, Communication, Event, Warnings, moves, stderr, tally
+from .tasks import Dispatcher
 from .unknown import TooMany, Unknown, distinct
 from .values import finite, plain
 
@@ -106,6 +107,7 @@ class Supervisor(Belief, Effects):
         self._init_health(wait_for_data, data_timeout, clock)
         self.health_changes = 0  # counts the changes of what health() shows
         self._init_answers()
+        self.tasks: Optional[Dispatcher] = None  # a fleet's tasks and its choice with a purpose (tasks.py)
         self.reset(confirmed)
 
     def reset(self, confirmed: bool = True) -> None:
@@ -162,10 +164,19 @@ class Supervisor(Belief, Effects):
             self._sent = {}
             self._dirty = False
         enabled = self._enabled
+        tasks = self.tasks
+        if tasks is not None:
+            tasks.observe()
         n = len(enabled)
         if n == 0:
             return None
-        perform = enabled[0] if n == 1 else enabled[int(self._random() * n)]
+        if tasks is not None and tasks.policy != "random":
+            chosen = tasks.choose(enabled)
+            if chosen is None:
+                return None
+            perform = chosen
+        else:
+            perform = enabled[0] if n == 1 else enabled[int(self._random() * n)]
         if self.watching and perform.__name__ not in self.STILL_METHODS:
             return self._watched(perform, None)
         return perform()
@@ -264,6 +275,8 @@ class Supervisor(Belief, Effects):
         if saved is None:
             return False
         self._delivered(event, value, saved, stamp)
+        if self.tasks is not None:
+            self.tasks.observe()  # a stop passed between two ticks
         return True
 
     def _apply(self, event: Event, value: Any) -> Optional[Tuple[Any, ...]]:
@@ -316,6 +329,8 @@ class Supervisor(Belief, Effects):
                 if getattr(self, attribute) is not saved[index]:
                     self.heard[attribute] = max(when, self.heard.get(attribute, when))
         else:
+            if self.tasks is not None:
+                self.tasks.observe()
             return
         for name in names[place + 1 :]:  # after unreadable data: one by one, as deliver() takes them
             self.deliver(name, message, True, stamp)
