@@ -157,12 +157,12 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
         shoot(browser, tmp_path, "fleet_view.png")
 
         # the run ends; the page says so and stays
-        assert wait_until(lambda: page(browser)["status"].startswith("ended: every robot did its 1 task"), 240), log.read_text()
+        assert wait_until(lambda: page(browser)["status"].startswith("ended: all 3 tasks given are done"), 240), log.read_text()
         assert not any(r["stale"] for r in page(browser)["rows"].values())
         assert "still serving the fleet's live view" in log.read_text()
     finally:
         children.stop([process])
-    assert "ok: every robot did its 1 task(s)" in log.read_text()
+    assert "ok: all 3 tasks given are done" in log.read_text()
 
 
 def test_sim_view_on_ros2_shows_the_coordinator_packages_events_and_stays_until_interrupted(
@@ -231,7 +231,7 @@ def test_sim_view_on_ros2_shows_the_coordinator_packages_events_and_stays_until_
         finally:
             children.stop([viewer])
         browser.get(f"http://127.0.0.1:{port}/")
-        assert wait_until(lambda: page(browser)["status"].startswith("ended: every robot did its 1 task"), 10)
+        assert wait_until(lambda: page(browser)["status"].startswith("ended: all 3 tasks given are done"), 10)
     finally:
         if process.poll() is None:
             process.send_signal(signal.SIGINT)

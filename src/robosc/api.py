@@ -29,6 +29,7 @@ if TYPE_CHECKING:
     from robosc.sim.report import Report
     from robosc.sim.world import World
     from robosc.synthesis.compare import Comparison
+    from robosc.synthesis.finish import Finish
     from robosc.synthesis.options import SynthesisOptions
     from robosc.synthesis.progress import Progress
     from robosc.synthesis.result import Restriction, SynthesisResult
@@ -39,7 +40,9 @@ __all__ = [
     "ModelError",
     "SynthesisResult",
     "check_file",
+    "check_finish",
     "check_text",
+    "enforce_finish",
     "format_text",
     "load_model",
     "plan_supervisor",
@@ -218,6 +221,27 @@ def restriction(result: SynthesisResult, event: str) -> Restriction | None:
     from robosc.synthesis.restrictions import restriction as made
 
     return made(result, event)
+
+
+def check_finish(result: SynthesisResult, options: SynthesisOptions | None = None) -> Finish:
+    """Whether every robot of ``result``'s fleet can always get to each place it goes to under
+    the supervisor, not just the fleet back to a marked state together
+    (:class:`robosc.synthesis.finish.Finish`: ``ok``, and for each robot that can be starved a
+    shortest run to where it cannot and the loop the others can then go round)."""
+    from robosc.synthesis.finish import check_finish as check
+    from robosc.synthesis.options import DEFAULT
+
+    return check(result, options or DEFAULT)
+
+
+def enforce_finish(result: SynthesisResult, options: SynthesisOptions | None = None) -> SynthesisResult:
+    """``result``'s supervisor made to keep every robot able to finish (:func:`check_finish`):
+    the maximally permissive one under which, besides, each robot can always get to each of its
+    places (the monolithic method); ``result`` itself where no robot can be starved."""
+    from robosc.synthesis.finish import finish_supervisor
+    from robosc.synthesis.options import DEFAULT
+
+    return finish_supervisor(result, check_finish(result, options), options or DEFAULT)
 
 
 def synthesize_file(

@@ -12,11 +12,12 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from robosc.api import SynthesisResult, plan_supervisor, synthesize_model
-from robosc.cli.common import EXIT_MODEL_ERRORS, exit_with, load_robot, synthesis_running, width
+from robosc.cli.common import EXIT_MODEL_ERRORS, exit_with, load_robot, say, synthesis_running, width
 from robosc.cli.table import Cell, boxed
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.synthesis.compare import Comparison
+from robosc.synthesis.finish import Finish
 from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Explanation, Restriction
 from robosc.synthesis.warnings import why_lines
@@ -196,6 +197,39 @@ def _print_cross_check(
     show(f"  {symbolic.method} synthesis: {found}; {verdict}", "    ")
     for difference in comparison.differences:
         show(f"    {difference}", "      ")
+
+
+def finish_json(finish: Finish) -> dict[str, Any]:
+    """What ``robosc synthesize --finish`` found, as JSON."""
+    return {
+        "ok": finish.ok,
+        "robots": list(finish.robots),
+        "stands_for": list(finish.stands_for),
+        "places": list(finish.places),
+        "starved": [
+            {"robot": s.robot, "place": s.location, "run": [step.event.name for step in s.path], "state": s.state,
+             "loop": [step.event.name for step in s.loop], "also": list(s.others)}
+            for s in finish.starved
+        ],
+    }
+
+
+def print_finish(finish: Finish, enforced: bool = False) -> None:
+    """What ``robosc synthesize --finish`` found, in words."""
+    if not finish.robots:
+        say("every robot can finish: nothing to check (no robots that are copies of each other)")
+        return
+    robots = ", ".join(f"{r} (for {s})" if s != r else r for r, s in zip(finish.robots, finish.stands_for, strict=False))
+    if finish.ok:
+        how = "under the supervisor made to keep it so" if enforced else "under the supervisor"
+        places = ", ".join(finish.places) if len(finish.places) <= 6 else f"its {len(finish.places)} places"
+        say(f"every robot can finish: {robots} can always get to each of {places} again, {how}")
+        return
+    say(f"a robot can be starved ({robots} followed):")
+    for starved in finish.starved:
+        say(f"  {starved}")
+        say(f"    where it is stuck: [{starved.state}]")
+    say("  (robosc synthesize --finish enforce makes the supervisor keep every robot able to finish)")
 
 
 def supervised(

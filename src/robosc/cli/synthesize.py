@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from robosc.api import cross_check, synthesize_model
+from robosc.api import check_finish, cross_check, enforce_finish, synthesize_model
 from robosc.cli.common import (
     EXIT_MODEL_ERRORS,
     EXIT_OK,
@@ -16,7 +16,7 @@ from robosc.cli.common import (
     say,
     synthesis_running,
 )
-from robosc.cli.results import as_json, print_result, print_warnings
+from robosc.cli.results import as_json, finish_json, print_finish, print_result, print_warnings
 from robosc.plant.show import show_network as network_listing
 from robosc.synthesis.options import (
     EDGE_ORDERS,
@@ -92,6 +92,14 @@ def _order(context: click.Context, parameter: click.Parameter, value: str) -> st
     help="How fleets of identical robots are synthesized (docs/synthesis-options.md): the supervisor is the same.",
 )
 @click.option(
+    "--finish",
+    type=click.Choice(["check", "enforce"]),
+    default=None,
+    help="A fleet: check that every robot can always get to each place it goes to (not just the fleet back "
+    "home together), naming a robot that can be starved and the loop that starves it (exit 1); enforce: "
+    "make the supervisor keep that so (the monolithic method).",
+)
+@click.option(
     "--stats",
     is_flag=True,
     help="Also print the effort of symbolic synthesis in figures that do not depend on the machine: "
@@ -110,6 +118,7 @@ def synthesize(
     explore: str,
     forward: str,
     fleet: str,
+    finish: str | None,
     stats: bool,
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
@@ -130,6 +139,12 @@ def synthesize(
     else:
         with synthesis_running(not as_json_output) as progress:
             result = synthesize_model(model, "symbolic", options, progress)
+    finished = None
+    if finish is not None and result.ok:
+        finished = check_finish(result, options)
+        if finish == "enforce" and not finished.ok:
+            result = enforce_finish(result, options)
+            finished = check_finish(result, options) if result.ok else None
     if show_network:
         click.echo(network_listing(result.network))
         click.echo()
@@ -140,6 +155,8 @@ def synthesize(
         data = as_json(result, warnings)
         if stats:
             data["effort"] = dict(result.effort) if result.effort is not None else None
+        if finished is not None:
+            data["finish"] = finish_json(finished)
         if comparison is not None:
             data["cross_check"] = {
                 "method": symbolic.method,
@@ -160,5 +177,8 @@ def synthesize(
                 f"{result.fleet or 'monolithic'}; "
                 f"{result.seconds * 1000:.1f} ms"
             )
+        if finished is not None:
+            print_finish(finished, finish == "enforce")
         print_warnings(warnings)
-    raise exit_with(EXIT_OK if result.ok else EXIT_MODEL_ERRORS)
+    starved = finished is not None and not finished.ok
+    raise exit_with(EXIT_OK if result.ok and not starved else EXIT_MODEL_ERRORS)

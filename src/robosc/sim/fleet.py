@@ -345,7 +345,7 @@ class FleetWorld:
             said = "; ".join(f"{name} touched {named.get(what, what)}" for name, what in hit)
             return False, f"collision: {said} at t = {sim.time:.1f} s"
         if done:
-            return True, f"every task given was done ({tasks * len(self.names)})"
+            return True, f"all {tasks * len(self.names)} tasks given are done"
         if done is None and all(s.tasks >= tasks for s in self.status):
             return True, f"every robot did its {tasks} task(s)"
         if sim.time - self.progress >= stall:

@@ -12,6 +12,7 @@ time: ``/clock`` advances at every step, and the coordinator runs on it (``use_s
 from __future__ import annotations
 
 import ast
+import json
 import tempfile
 import time
 import types
@@ -22,6 +23,7 @@ from typing import Any
 from robosc.codegen.plan import Plan
 from robosc.codegen.ros import generate, package_name, ros_name
 from robosc.runtime.onboard.node import REPORT_PREFIX
+from robosc.runtime.onboard.node_tasks import TASK_TOPIC, TASKS_TOPIC
 from robosc.sim import session
 from robosc.sim.fleet import (
     DOOR_ANSWERS,
@@ -170,6 +172,8 @@ def run_fleet_ros(
     bridges: dict[str, session.Bridge] = {}  # "" the simulator's node, else a robot's driver
     try:
         poses = pose_topics(names, fleet.sim.walker is not None)
+        stops = world.fleet.stops if world.fleet is not None else ()
+        given = [f"/{NAMESPACE}/{TASK_TOPIC}", f"/{NAMESPACE}/{TASKS_TOPIC}"] if stops else []
         table = reports(plan, commands, answers)
         for owner in ["", *names]:  # the simulator's node (clock, door, detector), a driver per robot
             bridge = graph.bridge(*(("simulator", "robosc_sim") if not owner else (f"driver_{owner}", f"{owner}_driver")))
@@ -177,6 +181,8 @@ def run_fleet_ros(
             mine: dict[str, object] = {key: [e for e in entries if _owner(e[0], names) == owner]
                                        for key, entries in (("commands", commands), ("answers", answers), ("poses", poses))}
             mine["reports"] = {c: r for c, r in table.items() if _owner(c + ".", names) == owner}
+            if not owner and given:  # the simulator's node gives the tasks, as an operator would
+                mine["tasks"] = {"give": given[0], "queue": given[1]}
             bridge.send("setup", robots=[], topics={}, roles=[], scan={}, fleet=mine)
         for owner, bridge in bridges.items():
             session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, _who(owner))
@@ -184,6 +190,7 @@ def run_fleet_ros(
             "rate": float(rate),
             "seed": seed,
             "event_log": folder / "events" / "coordinator.jsonl",
+            "policy": policy,
             # as deployed: the coordinator trusts nothing it has not been told; the drivers
             # report where they are, the person's detector says where the person is
             **(settings or {}),
@@ -192,11 +199,14 @@ def run_fleet_ros(
         if on_start is not None:
             on_start(graph)
         for owner, bridge in bridges.items():
-            topics = [e[1] for e in commands + answers if _owner(e[0], names) == owner]
+            topics = [e[1] for e in commands + answers if _owner(e[0], names) == owner] + (given if not owner else [])
             session.wait_for(bridge, session.connected(topics, 1), 60 + 2 * robots, f"the coordinator to connect to {_who(owner)}")
+        for _ in range(tasks * robots if stops else 0):  # the world's tasks, through the coordinator's topic
+            bridges[""].send("task", text=json.dumps({"stops": list(stops)}))
         started = time.monotonic()
         ended, ignored = _run(
-            fleet, bridges, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step
+            fleet, bridges, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step,
+            tasks * robots if stops else 0,
         )
         wall = time.monotonic() - started
         if on_end is not None:
@@ -232,9 +242,12 @@ def _run(
     speed: float,
     trace: Trace | None,
     on_step: Callable[[FleetWorld], None] | None = None,
+    given: int = 0,
 ) -> tuple[tuple[bool, str], int]:
     """Steps the world at ``speed`` times real time, passing commands in and answers out (each
-    through the node that offers its topic)."""
+    through the node that offers its topic); with ``given`` tasks given, until the queue the
+    coordinator publishes says they are done."""
+    counts: dict[str, int] = {}
     sim = fleet.sim
     ignored = 0
     started = time.monotonic()
@@ -247,6 +260,12 @@ def _run(
             if came is None:
                 return (False, f"{_who(owner)} ended"), ignored
             for message in came:
+                if message.get("op") == "queue":
+                    queue = _queue(message.get("text"))
+                    counts = queue.get("counts") or counts
+                    refused = [t for t in queue.get("tasks", []) if t.get("state") == "failed"]
+                    if refused:
+                        return (False, f"task {refused[0].get('id')} refused: {refused[0].get('why')}"), ignored
                 if message.get("op") == "order":
                     if trace is not None:  # when its line came from the node
                         trace("in", str(message.get("name")), float(message.get("received", time.perf_counter())))
@@ -272,7 +291,16 @@ def _run(
                 bridge.send("poses", poses=mine[owner])
         if on_step is not None:
             on_step(fleet)
-        ended = fleet.verdict(tasks, timeout, stall)
+        ended = fleet.verdict(tasks, timeout, stall, counts.get("done", 0) == given if given else None)
         if ended is not None:
             return ended, ignored
         session.pace(started, sim.time, speed)
+
+
+def _queue(text: Any) -> dict[str, Any]:
+    """The coordinator's task queue from its JSON ({} when it cannot be read)."""
+    try:
+        queue = json.loads(str(text))
+    except ValueError:
+        return {}
+    return queue if isinstance(queue, dict) else {}

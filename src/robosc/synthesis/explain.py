@@ -13,9 +13,14 @@ from robosc.language.render import render
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network, Requirement
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.fixedpoints import closure
+from robosc.synthesis.fixedpoints import closure, within
 from robosc.synthesis.result import Explanation, Fix, Step
 from robosc.synthesis.state import NetworkState
+
+
+def closure_forward(enc: Any, start: BDD, relations: list[Relation], inside: BDD) -> BDD:
+    """``start`` and every state of ``inside`` reachable from it over ``relations``."""
+    return within(enc, start, relations, enc.post, inside, "auto")
 
 
 def pick(fp: Any, states: BDD) -> NetworkState:
@@ -395,6 +400,18 @@ def breaking(asked: Probe, state: NetworkState, described: str, failed: bool = F
     return None
 
 
+def _lost_places(fp: Any, state: NetworkState) -> list[str]:
+    """The places (``Fixpoint.targets``, ``owner.location``) no run the requirements allow leads
+    to from ``state`` (none where synthesis had no targets)."""
+    targets = getattr(fp, "targets", ())
+    if not targets:
+        return []
+    enc = fp.enc
+    steps = [fp.relation[e].restrict(fp.required[e]) if e.controllable else fp.relation[e] for e in enc.network.events]
+    ahead = closure_forward(enc, fp.state(state), steps, fp.considered)
+    return [f"{t.owner}.{t.name}" for t in targets if (ahead & enc.at(t)) == enc.false]
+
+
 def blocking(fp: Any, state: NetworkState, described: str, trap: str | None = None) -> str:
     """Why ``state`` blocks, in words: the components stuck outside a marked state, how each
     could leave and what stops it. ``fp``: a fixed point or a :class:`Probe`."""
@@ -411,6 +428,12 @@ def blocking(fp: Any, state: NetworkState, described: str, trap: str | None = No
     because = f": {'; '.join(exits)}" if exits else ""
     if trap:
         because += f". {trap}"
+    lost = _lost_places(fp, state) if not names else []
+    if lost:
+        return (
+            f"a robot would be starved: from state [{described}] the requirements leave no way to "
+            f"{', '.join(lost)} any more, and every robot must be able to finish (--finish enforce)"
+        )
     return (
         f"the system would block: from state [{described}]{stuck} no sequence of events that the "
         f"requirements allow leads to a state where every component is in a marked state{because}"

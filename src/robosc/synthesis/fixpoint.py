@@ -32,6 +32,7 @@ class Fixpoint:
     allowed: Unions  # controllable events: where the supervisor allows them (a part per case)
     reachable: BDD
     memo: dict[object, Any] = field(default_factory=dict)  # explanations, computed on request, kept
+    targets: tuple[m.State, ...] = ()  # locations that must stay reachable besides a marked state (finish.py)
     describer: Any = None  # a state as people read it (None: robosc.synthesis.state.describe)
 
     def describe(self, state: NetworkState) -> str:

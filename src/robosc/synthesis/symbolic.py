@@ -12,6 +12,7 @@ the plant allows it, its requirements hold, and none of its successors is bad.
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 
 from robosc.language import model as m
 from robosc.plant.expressions import all_of
@@ -33,11 +34,14 @@ def fixpoint(
     watch: Watch | None = None,
     fleet: bool = False,
     to_start: bool = False,
+    targets: Sequence[m.State] = (),
 ) -> Fixpoint:
     """The fixed points of synthesis over ``network``; ``fleet``: it is a fleet of copies (for
     :data:`robosc.synthesis.options.FORWARDS`' auto, as a counted network is); ``to_start``:
     the initial state is the only marked one, whatever the model marks (a state is then bad
-    where the system cannot get back to its start: see robosc.synthesis.counted.synthesize_homes)."""
+    where the system cannot get back to its start: see robosc.synthesis.counted.synthesize_homes);
+    ``targets``: locations each of which must stay reachable from every good state besides a
+    marked state (a state that cannot reach one of them is bad: robosc.synthesis.finish)."""
     watch = watch if watch is not None else Watch.quiet()
     watch.phase("encoding")
     enc = Encoding(network, options)
@@ -105,7 +109,7 @@ def fixpoint(
         # branches (so the steps are the same), this round's nonblocking would find the same good
         # states (each reaches a marked state through good ones only): done, without computing it
         # again (it was 6.5 s of a 16-robot warehouse's 14.6)
-        if rounds > 1 and closed == bad and not branching:
+        if rounds > 1 and closed == bad and not branching and not targets:
             break
         bad = closed
         steps = []
@@ -119,6 +123,8 @@ def fixpoint(
         # its own fixed point: ring of 16 robots, 1,696 preimages in 3.7 s before, 768 in 1.7 s)
         watch.phase("nonblocking", rounds)
         good = within(enc, marked & considered & ~bad, steps, enc.pre, considered & ~bad, explore, each=True)
+        for target in targets:  # each robot's places, each a marking of its own
+            good &= within(enc, enc.at(target) & considered & ~bad, steps, enc.pre, considered & ~bad, explore, each=True)
         new_bad = considered & ~good
         if new_bad == bad:
             break
@@ -165,11 +171,13 @@ def fixpoint(
         considered,
         Unions({e: required[e] for e in network.controllable}, free),
         reachable,
+        targets=tuple(targets),
     )
 
 
 def synthesize_monolithic(
-    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None, fleet: bool = False
+    network: Network, options: SynthesisOptions = DEFAULT, watch: Watch | None = None, fleet: bool = False,
+    targets: Sequence[m.State] = (),
 ) -> SynthesisResult:
     """The maximally permissive controllable, nonblocking supervisor of ``network``, over one
     BDD of the whole network's state (the reference method; ``options``: how to compute it,
@@ -177,7 +185,7 @@ def synthesize_monolithic(
     counted)."""
     start = time.perf_counter()
     watch = watch if watch is not None else Watch.quiet()
-    fp = fixpoint(network, options, watch, fleet)
+    fp = fixpoint(network, options, watch, fleet, targets=targets)
     enc = fp.enc
     if (fp.initial & fp.bad) != enc.false:
         explanation = explain(fp)

@@ -18,15 +18,17 @@ import math
 import re
 import sys
 import time
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 from .delivery import Delivery
 from .layer import BLOCKED_TOPIC, SupervisionLayer
 from .messages import Unsendable, fill, received
 from .node_base import Call, Topic
+from .node_tasks import NodeTasks
 from .recording import EventLog, Recorder, writable
 from .reports import REPORT_PREFIX, NodeReports
 from .supervisor import Warnings
+from .tasks import POLICIES
 from .viewing import VIEW_EVENTS_TOPIC, VIEW_PAGE_TOPIC, NodeView
 
 # what the adapters read from here
@@ -63,13 +65,15 @@ class Parameter(object):
     """A node parameter: its default, what it means, and the values it takes."""
 
     def __init__(
-        self, name: str, default: Any, description: str, low: Optional[float] = None, high: Optional[float] = None
+        self, name: str, default: Any, description: str, low: Optional[float] = None, high: Optional[float] = None,
+        choices: Tuple[str, ...] = (),
     ) -> None:
         self.name = name
         self.default = default
         self.description = description
         self.low = low
         self.high = high
+        self.choices = choices  # the texts it may be (none: any)
 
     def check(self, value: Any) -> tuple[Any, Optional[str]]:
         """``(value, None)`` for a good value (an integer is taken for a float), else
@@ -79,6 +83,8 @@ class Parameter(object):
             value = float(value)
         if type(value) is not kind:
             return self.default, "%s must be a %s, not %r" % (self.name, kind.__name__, value)
+        if self.choices and value not in self.choices:
+            return self.default, "%s must be one of %s, not %r" % (self.name, ", ".join(self.choices), value)
         if kind in (int, float):
             if kind is float and not math.isfinite(value):
                 return self.default, "%s must be a finite number, not %r" % (self.name, value)
@@ -154,6 +160,13 @@ PARAMETERS = (
         "perform nothing until every communication whose data a condition reads has delivered readable data",
     ),
     Parameter(
+        "policy",
+        "purpose",
+        "a fleet's coordinator: how it chooses among what its supervisor allows: purpose (only what gets the "
+        "tasks given on robosc/task done, the robot waiting longest first) or random (any allowed command)",
+        choices=POLICIES,
+    ),
+    Parameter(
         "data_timeout",
         1.0,
         "seconds of unreadable data from a communication before the events that read it are held",
@@ -173,7 +186,7 @@ def controller_side(name: str) -> str:
     return CONTROLLER_PREFIX + "/" + name
 
 
-class NodeCore(NodeView, NodeReports, SupervisionLayer):
+class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
     """The node's work, middleware aside. An adapter calls :meth:`setup`, creates what
     :attr:`inputs`, :attr:`outputs`, :attr:`service_calls` and :attr:`action_calls` need,
     and implements ``publish``, ``publish_text``, ``call_service``, ``start_goal`` and
@@ -252,6 +265,7 @@ class NodeCore(NodeView, NodeReports, SupervisionLayer):
         self.text_type: Any = None
         self.still = frozenset(robot_class.STILL)
         self._plan_routes(robot_class)
+        self.start_tasks(robot_class, self.params["policy"], lambda: self.clock())
 
     # ---- after each callback and cycle -------------------------------------------------------
     def checkpoint(self) -> None:
@@ -259,6 +273,11 @@ class NodeCore(NodeView, NodeReports, SupervisionLayer):
         stays unconfirmed until it is acknowledged), and report on ``health`` (latched) when
         what the node holds changed."""
         self.delivery.follow()
+        if self.queue_changed:
+            try:
+                self.publish_queue()
+            except Exception as error:
+                self.warnings("cannot publish the task queue: %s" % (error,), "task queue")
         changes = (self.supervisor.health_changes, len(self.delivery.pending))
         if changes == self.health_seen:
             return  # nothing health() shows has changed

@@ -38,6 +38,7 @@ from .node import (
     controller_side,
     default_name,
 )
+from .node_tasks import QUEUE_SERVICE, TASK_TOPIC, TASKS_TOPIC
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
 LOST = 9  # actionlib_msgs/GoalStatus.LOST
@@ -160,7 +161,12 @@ class SupervisorNode(NodeCore):
         self.asking: Dict[str, float] = {}  # components whose driver is being asked now, since when
         for component in self.supervisor.COMPONENTS:
             self.report_clients[component] = rospy.ServiceProxy(REPORT_PREFIX + component, self.trigger)
+        if self.dispatcher is not None:  # a fleet's coordinator: tasks at run time (node_tasks.py)
+            self.text_publishers[TASKS_TOPIC] = rospy.Publisher(TASKS_TOPIC, self.text_type, queue_size=10, latch=True)
         # subscriptions and servers last: their callbacks need everything above
+        if self.dispatcher is not None:
+            rospy.Subscriber(TASK_TOPIC, self.text_type, self.locked(self.task_given), queue_size=depth)
+            rospy.Service(QUEUE_SERVICE, self.trigger, self.locked(self.serve_queue_ros1))
         for topic in self.inputs.values():
             rospy.Subscriber(topic.name, topic.type, self.locked(self.stamped, topic), queue_size=depth)
         if supervising:
@@ -175,6 +181,9 @@ class SupervisorNode(NodeCore):
                     controller_side(call.name), call.type, execute_cb=self.serve_goal(call), auto_start=False
                 )
                 call.server.start()
+
+    def serve_queue_ros1(self, _request: Any) -> Any:
+        return self.trigger._response_class(success=True, message=self.queue_text())
 
     def locked(self, function: Callable[..., Any], *first: Any) -> Callable[..., Any]:
         """``function(*first, *args)`` holding the lock, never raising into rospy."""

@@ -67,10 +67,12 @@ class Dispatcher(object):
     called with a task's :meth:`Task.as_dict` whenever its state changes."""
 
     def __init__(self, supervisor: Any, policy: str = "purpose",
-                 on_change: Optional[Callable[[Dict[str, Any]], Any]] = None) -> None:
+                 on_change: Optional[Callable[[Dict[str, Any]], Any]] = None,
+                 clock: Optional[Callable[[], float]] = None) -> None:
         if policy not in POLICIES:
             raise ValueError("no policy %r (%s)" % (policy, ", ".join(POLICIES)))
         self.supervisor, self.policy, self.on_change = supervisor, policy, on_change
+        self.clock: Callable[[], float] = clock if clock is not None else supervisor.clock  # stamps and waits
         self.routes = Routes(getattr(supervisor, "SHAPES", ()), getattr(supervisor, "ROUTES", ()))
         self.groups = self.routes.groups()
         self.robots = [name for members in self.groups.values() for name in members]
@@ -93,7 +95,7 @@ class Dispatcher(object):
         self._numbers += 1
         name = str(id) if id else "task%d" % self._numbers
         task = Task(name, tuple(str(s) for s in stops) if isinstance(stops, (list, tuple)) else (), robot,
-                    self.supervisor.clock())
+                    self.clock())
         why = self._refusal(task, stops)
         if name in self.tasks:
             why = "a task named %r was given already" % name
@@ -104,6 +106,17 @@ class Dispatcher(object):
         else:
             self._pending = True
             self._changed(task)
+        self._forget()
+        return task
+
+    def refuse(self, why: str, id: Optional[str] = None) -> Task:
+        """Note a task that could not even be read as failed, with why."""
+        self._numbers += 1
+        task = Task(str(id) if id else "task%d" % self._numbers, (), None, self.clock())
+        if task.id in self.tasks:
+            task.id = "%s#%d" % (task.id, self._numbers)
+        self.tasks[task.id] = task
+        self._finish(task, FAILED, why)
         self._forget()
         return task
 
@@ -142,7 +155,7 @@ class Dispatcher(object):
 
     def _finish(self, task: Task, state: str, why: str = "") -> None:
         task.state, task.why = state, why
-        task.done_at = self.supervisor.clock()
+        task.done_at = self.clock()
         if task.by is not None and self.doing.get(task.by) is task:
             del self.doing[task.by]
             self.since[task.by] = task.done_at
@@ -186,7 +199,7 @@ class Dispatcher(object):
             here = self._where(robot)
             while here is not None and task.reached < len(task.stops) and task.stops[task.reached] == here:
                 task.reached += 1
-                self.since[robot] = self.supervisor.clock()
+                self.since[robot] = self.clock()
             if task.reached == len(task.stops):
                 self.done[robot] += 1
                 self._finish(task, DONE)
@@ -213,7 +226,7 @@ class Dispatcher(object):
                     best = (key, robot)
             if best is not None:
                 robot = best[1]
-                task.state, task.by, task.assigned_at = ASSIGNED, robot, self.supervisor.clock()
+                task.state, task.by, task.assigned_at = ASSIGNED, robot, self.clock()
                 self.doing[robot] = task
                 self.since[robot] = task.assigned_at
                 self._changed(task)
@@ -229,7 +242,7 @@ class Dispatcher(object):
 
     def waiting(self) -> Dict[str, float]:
         """Each robot with a task: the seconds since it last got on."""
-        now = self.supervisor.clock()
+        now = self.clock()
         return dict((robot, now - self.since[robot]) for robot in self.doing)
 
     # ---- the choice ---------------------------------------------------------------
@@ -259,7 +272,7 @@ class Dispatcher(object):
             if best is None or key < best[0]:
                 best = (key, robot, names[now[0]])
         if best is not None:
-            self.since[best[1]] = supervisor.clock()
+            self.since[best[1]] = self.clock()
             return best[2]
         if supervisor.unconfirmed:
             return None  # what would help whom is not known

@@ -14,9 +14,12 @@ simulation -> node:
    geometry_msgs/Pose2D topic: a robot's pose, where its move ends, the person's position;
    "reports": {component: {"service": name, "at": location, "moves": {name: [[from, to], ...]}}}:
    the std_srvs/Trigger service each driver offers to say where its component is, which it
-   knows from the commands it obeyed and the answers it gave, moved as the model moves it)
+   knows from the commands it obeyed and the answers it gave, moved as the model moves it;
+   "tasks": {"give": topic, "queue": topic}: the simulator's node gives the coordinator its
+   tasks (std_msgs/String) and reads the queue it publishes)
   {"op": "answer", "name": name, "data": text or null}   (an answer: publish it on its topic)
   {"op": "poses", "poses": {name: [x, y, theta], ...}}   (x NaN: none, e.g. no move under way)
+  {"op": "task", "text": text}          (give the coordinator a task: std_msgs/String on fleet.tasks.give)
 node -> simulation:
   {"op": "ready"}
   {"op": "peers", "robots": [connected roles of robot 0, ...]}
@@ -26,6 +29,7 @@ node -> simulation:
   {"op": "press", "robot": i, "pressed": true | false}   (the emergency stop button service)
   a fleet's world:
   {"op": "order", "name": name}         (the coordinator sent a command: bot1.go, open_door)
+  {"op": "queue", "text": json}         (the coordinator's task queue, as it published it)
   {"op": "peers", "robots": [[topics with the coordinator on the other end]]}
 """
 
@@ -135,6 +139,8 @@ class Setup(object):
         self.answers = [(str(n), str(t), str(k)) for n, t, k in fleet.get("answers", [])]  # type: List[Tuple[str, str, str]]
         self.poses = [(str(n), str(t)) for n, t in fleet.get("poses", [])]  # type: List[Tuple[str, str]]
         self.reports = dict(fleet.get("reports") or {})  # type: Dict[str, Dict[str, Any]]
+        # the operator's side of the coordinator's tasks: {"give": topic, "queue": topic} or {}
+        self.tasks = dict(fleet.get("tasks") or {})  # type: Dict[str, str]
         self.fleet = "fleet" in message
 
 
@@ -297,6 +303,17 @@ class FleetWiring(object):
             (name, (topic, subscriber(topic, self.kinds[kind], self._order(channel, name))))
             for name, topic, kind in setup.commands
         )
+        self.give = None  # type: Any
+        if setup.tasks:  # as an operator gives tasks and watches the queue
+            self.give = (setup.tasks["give"], publisher(setup.tasks["give"], String))
+            self.subscriptions["queue"] = (setup.tasks["queue"], subscriber(setup.tasks["queue"], String, self._queue(channel)))
+
+    @staticmethod
+    def _queue(channel: Channel) -> Callable[[Any], None]:
+        def queue(message: Any) -> None:
+            channel.send("queue", text=str(message.data))
+
+        return queue
 
     def _where(self, component: str) -> Callable[[], str]:
         return lambda: self.whereabouts.where(component)
@@ -321,6 +338,10 @@ class FleetWiring(object):
                     if found[2] == "string":
                         out.data = str(message.get("data") or "")
                     found[1].publish(out)
+            elif op == "task" and self.give is not None:
+                from std_msgs.msg import String
+
+                self.give[1].publish(String(data=str(message.get("text"))))
             elif op == "poses":
                 for name, value in dict(message.get("poses") or {}).items():
                     pose = self.poses.get(str(name))
@@ -332,5 +353,7 @@ class FleetWiring(object):
     def peers(self, publisher_count: Callable[[Any], int], subscriber_count: Callable[[Any], int]) -> List[List[str]]:
         """The topics that have the coordinator on the other end (as one robot's list)."""
         connected = [topic for topic, p, _ in self.publishers.values() if publisher_count(p) > 0]
+        if self.give is not None and publisher_count(self.give[1]) > 0:
+            connected.append(self.give[0])
         connected += [topic for topic, s in self.subscriptions.values() if subscriber_count(s) > 0]
         return [connected]

@@ -72,6 +72,23 @@ def counted(network: Network, least: int = 2, marking: bool = True) -> Counted:
             raise
 
 
+def apart(network: Network, least: int = 2) -> tuple[Counted, tuple[str, ...]]:
+    """The counter abstraction of ``network`` with the first robot of each group of copies kept
+    apart (its own automaton, as any component; the others counted where at least ``least`` are
+    left): what one robot does can be followed, and stands for each of its group's. Returns the
+    counted network and the robots kept apart; raises :class:`NotSymmetric` as :func:`counted`."""
+    found = [group for group in groups(network) if len(group.agents) >= 2]
+    if not found:
+        raise NotSymmetric("no two components are copies of each other")
+    kept = tuple(group.agents[0].component.name for group in found)
+    rest = []
+    for group in found:
+        others = group.agents[1:]
+        if len(others) >= least:
+            rest.append(Group(group.name, others, {id(a): map_to_rep(a, others[0]) for a in others}))
+    return _counted(network, rest), kept
+
+
 def _split(found: list[Group], differ: Differ, least: int) -> list[Group]:
     """``found`` with ``differ.group`` split into its parts of at least ``least`` agents (the
     others tracked each on its own)."""
