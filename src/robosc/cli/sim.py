@@ -28,6 +28,9 @@ if TYPE_CHECKING:
 
 
 
+PROGRESS_SECONDS = 5.0  # real seconds between two progress lines of a fleet's run
+
+
 @click.command()
 @click.argument("world_file", metavar="WORLD", type=click.Path())
 @click.argument("model", type=click.Path())
@@ -182,6 +185,8 @@ def _run(
         hooks.update(_local_feed(live, speed))
     elif live is not None:
         hooks["on_step"] = _ros_feed(live, folder, None if fleet else options.get("robots") or 1)
+    if fleet:
+        hooks["on_step"] = _with_progress(hooks.get("on_step"))
     try:
         if ros == "none":
             return run_world(world, result, None, folder=folder, speed=speed, **hooks, **options)
@@ -197,6 +202,22 @@ def _run(
         raise input_problem(f"{model}: {exc}") from None
     except SessionError as exc:
         raise input_problem(f"the simulation could not run on ROS {ros}: {exc}") from None
+
+
+def _with_progress(step: Any) -> Any:
+    """``step`` (or nothing) and, every PROGRESS_SECONDS of real time, a line on stderr saying
+    where a fleet's run is (robosc.sim.fleet.FleetWorld.progress_line)."""
+    said = [time.monotonic()]
+
+    def hook(world: Any) -> None:
+        if step is not None:
+            step(world)
+        now = time.monotonic()
+        if now - said[0] >= PROGRESS_SECONDS:
+            said[0] = now
+            click.echo(f"robosc: {world.progress_line()}", err=True)
+
+    return hook
 
 
 def _title(report: Report, world: Any, ros: str) -> str:

@@ -276,6 +276,9 @@ class FleetWorld:
         self.scans: list[list[float] | None] = [None] * len(names)
         self.progress = 0.0  # when a robot last arrived at the end of a leg of its task
         self.person_cell: str | None = None  # the cell the detector last said the person is in
+        # the coordinator's task queue as last heard (robosc.runtime.onboard.node_tasks: tasks,
+        # counts, waiting, t): from its dispatcher in this process, from its topic on ROS
+        self.queue: dict[str, Any] = {}
 
     def command(self, name: str) -> None:
         """A command of the coordinator's (one it has no driver for does nothing)."""
@@ -352,8 +355,25 @@ class FleetWorld:
             where = "; ".join(self.whereabouts(i) for i in range(len(self.names)))
             return False, f"deadlock: no robot got on with its task for {stall:g} s: {where}"
         if sim.time >= timeout - 1e-9:
-            return False, f"timeout: {timeout:g} s of simulated time"
+            return False, f"timeout: {timeout:g} s of simulated time; {self.summary()}"
         return None
+
+    def summary(self) -> str:
+        """The tasks done so far and where each robot is and what it waits for (for a run
+        stopped before its end)."""
+        counts = self.queue.get("counts") or {}
+        given = sum(int(n) for n in counts.values())
+        done = f"{counts.get('done', 0)}/{given} tasks done" if given else f"{sum(s.tasks for s in self.status)} tasks done"
+        tasks, waited = self.doing(), self.waited()
+        where = []
+        for i, name in enumerate(self.names):
+            said = self.whereabouts(i)
+            if name in tasks:
+                said += f", on {tasks[name]}"
+                if waited.get(name, 0.0) >= 1.0:
+                    said += f", waiting {waited[name]:.0f} s"
+            where.append(said)
+        return f"{done}; " + "; ".join(where)
 
     def whereabouts(self, i: int) -> str:
         """Where robot ``i`` is and what it waits for: its cell, what its driver does, the cell
@@ -371,11 +391,42 @@ class FleetWorld:
             told += f", its next move into {self.fleet.cell(x, y) or 'no cell'}"
         return told + ")"
 
+    def waited(self) -> dict[str, float]:
+        """Each robot with a task: the simulated seconds since it last got on with it."""
+        waiting = self.queue.get("waiting") or {}
+        since = float(self.queue.get("t") or self.sim.time)
+        return {name: max(0.0, float(w) + self.sim.time - since) for name, w in waiting.items()}
+
+    def doing(self) -> dict[str, str]:
+        """Each robot's task under way: its id and stops, the next one marked (``task2: shelf ->
+        [depot]``)."""
+        out = {}
+        for task in self.queue.get("tasks") or []:
+            if task.get("state") == "assigned" and task.get("by"):
+                stops = [str(s) for s in task.get("stops") or []]
+                reached = int(task.get("reached") or 0)
+                out[str(task["by"])] = f"{task.get('id')}: " + " -> ".join(
+                    f"[{stop}]" if k == reached else stop for k, stop in enumerate(stops)
+                )
+        return out
+
+    def progress_line(self) -> str:
+        """Where the run is, in one line: simulated time, tasks done and queued, who waits longest."""
+        counts = self.queue.get("counts") or {}
+        given = sum(int(n) for n in counts.values())
+        line = f"t = {self.sim.time:.0f} s: {counts.get('done', 0)}/{given} tasks done, {counts.get('assigned', 0)} under way, {counts.get('queued', 0)} queued"
+        waited = self.waited()
+        if waited:
+            name = max(waited, key=lambda n: waited[n])
+            line += f"; waiting longest: {name} ({waited[name]:.0f} s)"
+        return line
+
     def frame(self) -> dict[str, Any]:
         """What the fleet's live view draws now: each robot's pose, what its driver does, the cell
         it is in and the cell it drives into (held from its ``go`` until it arrives), its tasks;
         the person (x, y) or None; the door's state or None."""
         robots: dict[str, Any] = {}
+        tasks, waited = self.doing(), self.waited()
         for i, name in enumerate(self.names):
             pose, driver = self.sim.bodies[i].pose, self.drivers[i]
             end = driver.destination()
@@ -384,12 +435,14 @@ class FleetWorld:
                 "x": round(pose.x, 3), "y": round(pose.y, 3), "heading": round(pose.heading, 3),
                 "doing": driver.doing, "cell": self.fleet.cell(pose.x, pose.y), "into": into,
                 "tasks": self.status[i].tasks, "collided": self.sim.status[i].collided_at is not None,
+                "task": tasks.get(name, ""), "waited": round(waited[name], 1) if name in waited else None,
             }
         person = None
         if self.sim.walker is not None and math.isfinite(self.sim.person[0]):
             person = [round(self.sim.person[0], 3), round(self.sim.person[1], 3)]
         door = self.door.state if self.door is not None else None
-        return {"t": round(self.sim.time, 3), "robots": robots, "person": person, "door": door}
+        return {"t": round(self.sim.time, 3), "robots": robots, "person": person, "door": door,
+                "queue": dict(self.queue.get("counts") or {})}
 
     def report(self, ended: tuple[bool, str], tasks: int, ignored: int, wall: float = 0.0, folder: str = "") -> Report:
         """The run's report (robosc.sim.report): ``tasks`` each robot had to do, ``ignored``
@@ -470,6 +523,10 @@ class FleetRun:
         if self.sim.time + 1e-9 >= self._next_tick:
             self._next_tick += 1.0 / self.rate
             self.coordinator.tick()
+        if self.dispatcher is not None:
+            d = self.dispatcher
+            self.world.queue = {"counts": d.counts(), "waiting": d.waiting(), "t": self.sim.time,
+                                "tasks": [t.as_dict() for t in d.doing.values()]}
         if self.on_step is not None:
             self.on_step(self.world)
 
@@ -479,6 +536,10 @@ class FleetRun:
         if self.dispatcher is not None:
             done = self.dispatcher.counts()[DONE] == len(self.dispatcher.tasks)
         return self.world.verdict(self.tasks, timeout, self.stall, done)
+
+    def interrupted(self) -> tuple[bool, str]:
+        """How the run ends when it is stopped (Ctrl-C): what was done, what each robot waits for."""
+        return False, f"stopped at t = {self.sim.time:.1f} s (Ctrl-C); {self.world.summary()}"
 
     def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report:
         return self.world.report(ended, self.tasks, self.ignored, wall, folder)

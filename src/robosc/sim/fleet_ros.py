@@ -204,10 +204,13 @@ def run_fleet_ros(
         for _ in range(tasks * robots if stops else 0):  # the world's tasks, through the coordinator's topic
             bridges[""].send("task", text=json.dumps({"stops": list(stops)}))
         started = time.monotonic()
-        ended, ignored = _run(
-            fleet, bridges, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step,
-            tasks * robots if stops else 0,
-        )
+        try:
+            ended, ignored = _run(
+                fleet, bridges, graph, {entry[0] for entry in answers}, tasks, timeout, stall, speed, trace, on_step,
+                tasks * robots if stops else 0,
+            )
+        except KeyboardInterrupt:  # stopped: the report says how far it got
+            ended, ignored = (False, f"stopped at t = {fleet.sim.time:.1f} s (Ctrl-C); {fleet.summary()}"), 0
         wall = time.monotonic() - started
         if on_end is not None:
             on_end(graph)
@@ -263,6 +266,7 @@ def _run(
                 if message.get("op") == "queue":
                     queue = _queue(message.get("text"))
                     counts = queue.get("counts") or counts
+                    fleet.queue = queue
                     refused = [t for t in queue.get("tasks", []) if t.get("state") == "failed"]
                     if refused:
                         return (False, f"task {refused[0].get('id')} refused: {refused[0].get('why')}"), ignored

@@ -207,5 +207,9 @@ class LocalRun:
         simulated seconds passed), or None (robosc.sim.run's loop asks after every step)."""
         return self.sim.verdict(timeout)
 
+    def interrupted(self) -> tuple[bool, str]:
+        """How the run ends when it is stopped (Ctrl-C)."""
+        return False, f"stopped at t = {self.sim.time:.1f} s (Ctrl-C)"
+
     def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report:
         return report_of(self.sim, ended[0], ended[1], wall, folder)

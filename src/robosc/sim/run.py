@@ -102,6 +102,8 @@ class Control(Protocol):
 
     def ended(self, timeout: float) -> tuple[bool, str] | None: ...
 
+    def interrupted(self) -> tuple[bool, str]: ...
+
     def report(self, ended: tuple[bool, str], wall: float, folder: str = "") -> Report: ...
 
 
@@ -153,8 +155,11 @@ def drive(control: Control, timeout: float, folder: str = "") -> Report:
     (``folder``: where its files are): the loop of every run in this process."""
     started = time.monotonic()
     while True:
-        control.step()
-        ended = control.ended(timeout)
+        try:
+            control.step()
+            ended = control.ended(timeout)
+        except KeyboardInterrupt:  # stopped: the report says how far it got
+            ended = control.interrupted()
         if ended is not None:
             return control.report(ended, time.monotonic() - started, folder)
 

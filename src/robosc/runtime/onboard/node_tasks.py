@@ -6,7 +6,8 @@
   optional) or as text: ``shelf depot`` or ``bot2: shelf depot``.
 * ``robosc/tasks`` (std_msgs/String, latched): the queue as JSON after each change:
   ``{"tasks": [{"id", "stops", "robot", "state", "why", "by", "reached", "queued_at",
-  "assigned_at", "done_at"}, ...], "counts": {state: n}, "waiting": {robot: seconds}}``.
+  "assigned_at", "done_at"}, ...], "counts": {state: n}, "waiting": {robot: seconds since it
+  last got on with its task}, "t": the node's time}``.
 * ``robosc/queue`` (std_srvs/Trigger): the same JSON, on request.
 
 A task that cannot be read or that no robot can do is in the queue as failed, with why, and in
@@ -97,7 +98,8 @@ class NodeTasks(NodeBase):
         if self.dispatcher is None:
             return json.dumps({"tasks": [], "counts": {}, "waiting": {}})
         d = self.dispatcher
-        return json.dumps({"tasks": d.queue(), "counts": d.counts(), "waiting": d.waiting()}, sort_keys=True)
+        return json.dumps({"tasks": d.queue(), "counts": d.counts(), "waiting": d.waiting(), "t": d.clock()},
+                          sort_keys=True)
 
     def serve_queue(self, _request: Any, response: Any) -> Any:
         """The ``robosc/queue`` service (std_srvs/Trigger), as rclpy calls it."""
