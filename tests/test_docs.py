@@ -160,6 +160,32 @@ def test_the_deploy_pages_give_the_steps_of_the_generated_readme(tmp_path: Path,
     assert steps in re.findall(r"```sh\n(.*?)```", page, re.S), f"howto/ros{ros}.md does not give:\n{steps}"
 
 
+def python_examples() -> list[tuple[str, int, str, str]]:
+    """(page, block number, code, what it prints) for each ```python block of the pages that
+    the text says prints a ```text block."""
+    found = []
+    for page in PAGES:
+        text = page.read_text()
+        pattern = r"```python\n(.*?)```\n\nprints\n\n```text\n(.*?)```"
+        for number, match in enumerate(re.finditer(pattern, text, re.S)):
+            found.append((str(page.relative_to(DOCS)), number, match.group(1), match.group(2)))
+    return found
+
+
+PYTHON_EXAMPLES = python_examples()
+
+
+def test_the_pages_show_python_examples() -> None:
+    assert {page for page, *_ in PYTHON_EXAMPLES} >= {"howto/fleet.md"}
+
+
+@pytest.mark.parametrize(("page", "number", "code", "printed"), PYTHON_EXAMPLES, ids=lambda v: str(v)[:20])
+def test_a_python_example_in_the_docs_prints_what_the_page_shows(page: str, number: int, code: str, printed: str) -> None:
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout == printed, f"{page}, python example {number}:\n{done.stdout}"
+
+
 def test_list_codes_aligns_every_description() -> None:
     done = robosc("check", "--list-codes", cwd=ROOT)
     lines = done.stdout.splitlines()

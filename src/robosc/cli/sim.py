@@ -53,7 +53,8 @@ PROGRESS_SECONDS = 5.0  # real seconds between two progress lines of a fleet's r
     type=click.IntRange(1, 1000),
     default=1,
     show_default=True,
-    help="In a fleet's world: the tasks each robot must do before the run ends well.",
+    help="In a fleet's world: the tasks given per robot (each the world's stops), all to be done for the run to "
+    "end well.",
 )
 @click.option(
     "--policy",

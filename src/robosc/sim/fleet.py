@@ -20,7 +20,9 @@ instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...)
   and in a world without a person), at the first step and whenever it changes.
 
 With a :class:`Jitter`, each robot drives at a share of the top speed and starts late, drawn
-from a seed. The run ends when every robot has done its tasks (success), at the first
+from a seed. The run ends when every task the world gave is done (its ``stops``, ``tasks`` per
+robot, given to the coordinator's dispatcher; in a world without stops, when each robot has
+driven its legs ``tasks`` times) (success), at the first
 collision, when no robot has got on with its task (arrived at the end of a leg) for ``stall``
 seconds while tasks remain (a deadlock, or robots stopping again and again: each robot's cell,
 what its driver does and what it waits for are told), or at the time-out.
@@ -480,7 +482,7 @@ class FleetRun:
         self.world = FleetWorld(world, names, jitter)
         self.sim = self.world.sim
         self.rate = rate
-        self.tasks, self.stall = tasks, stall  # the run ends well when every robot did its tasks
+        self.tasks, self.stall = tasks, stall  # the run ends well when every task given is done
         self.ignored = 0
         run = self
 

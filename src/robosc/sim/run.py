@@ -5,7 +5,7 @@ this process (:func:`run_local`) and one over ROS (:func:`run_ros`), each giving
 In a world with a goal (the maze, the line) each robot has a controller of its own and the run
 ends when every robot reached the goal (success), one touched something, or the time is up. In
 a fleet's world (one with ``fleet``) one coordinator commands every robot's driver, the door
-and the rest, and the run ends when every robot did its tasks, at a collision, a deadlock, or
+and the rest, and the run ends when every task given is done, at a collision, a deadlock, or
 the time-out. On ROS the controller is generated (one package, relative names) and runs with
 the simulator's node on a private graph (robosc.sim.fleet_ros for a fleet).
 """
