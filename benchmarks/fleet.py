@@ -25,6 +25,11 @@ answer is not counted), messages per wall second (answers and commands), tasks p
 hour, the time each robot stood waiting (mean), collisions and how the run ended.
 
 Run: python benchmarks/fleet.py --world warehouse [--sizes 2 4 8 16] [--speed 4]
+
+With ``--world throughput`` (issue 46): benchmarks/throughput.py, the tasks per simulated hour
+of the coordinator's policy, of the random choice and of the reservation rule against the
+world's physical bound, in the warehouse at 4, 8 and 16 robots and the lane, swap and crossing
+scenarios (``--tasks K`` per robot).
 """
 
 from __future__ import annotations
@@ -158,7 +163,8 @@ def warehouse(sizes: list[int], speed: float, ros: int) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--world", choices=["maze", "warehouse"], default="maze")
+    parser.add_argument("--world", choices=["maze", "warehouse", "throughput"], default="maze")
+    parser.add_argument("--tasks", type=int, default=2, help="--world throughput: tasks per robot")
     parser.add_argument("--sizes", type=int, nargs="+")
     parser.add_argument("--seconds", type=float, default=20.0, help="simulated seconds per run")
     parser.add_argument("--speed", type=float, help="simulated seconds per wall second (2; the warehouse: 4)")
@@ -167,6 +173,12 @@ def main() -> None:
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
     if args.world == "warehouse":
         warehouse(args.sizes or [2, 4, 8, 16], args.speed or 4.0, args.ros)
+        return
+    if args.world == "throughput":  # benchmarks/throughput.py: the work done against the bound
+        sys.path.insert(0, str(ROOT / "benchmarks"))
+        from throughput import main as throughput
+
+        throughput(["--sizes", *map(str, args.sizes or [4, 8, 16]), "--tasks", str(args.tasks)])
         return
     args.sizes = args.sizes or [1, 2, 4, 8, 16]
     args.speed = args.speed or 2.0

@@ -3,6 +3,10 @@
 
 from __future__ import annotations
 
+import json
+import re
+import sys
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -214,3 +218,95 @@ def test_a_task_whose_stops_cannot_follow_each_other_is_refused() -> None:
     task = fleet.tasks.submit(["gone", "home"])
     assert (task.state, task.why) == (FAILED, "bot cannot get from gone to home")
     assert fleet.tasks.submit(["gone"]).state == QUEUED
+
+
+# ---- the node's task topics (node_tasks.py), middleware aside ---------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "read"),
+    [
+        ("shelf depot", (["shelf", "depot"], None, None)),
+        ("bot2: shelf depot", (["shelf", "depot"], "bot2", None)),
+        ('{"stops": ["shelf"], "robot": "bot", "id": "order-17"}', (["shelf"], "bot", "order-17")),
+        ('  {"stops": ["shelf", "depot"]}  ', (["shelf", "depot"], None, None)),
+    ],
+)
+def test_a_task_message_is_json_or_text(text: str, read: tuple[Any, ...]) -> None:
+    from robosc.runtime.onboard.node_tasks import read_task
+
+    assert read_task(text) == read
+
+
+@pytest.mark.parametrize(
+    ("text", "why"),
+    [
+        ("", "(it was empty)"),
+        ("{not json", "a task in JSON could not be read"),
+        ('{"stops": "shelf"}', "a task's stops are a list of location names"),
+        ('{"stops": ["shelf"], "when": 3}', "a task has stops, robot and id, not when"),
+        ('{"stops": ["shelf"], "robot": 2}', "a task's robot is a text"),
+        ("x" * 10001, "at most 10000 characters"),
+        (None, "(it was empty)"),
+    ],
+)
+def test_a_task_message_that_cannot_be_read_says_why(text: Any, why: str) -> None:
+    from robosc.runtime.onboard.node_tasks import read_task
+
+    with pytest.raises(ValueError, match=re.escape(why)):
+        read_task(text)
+
+
+class Message:
+    def __init__(self, data: Any) -> None:
+        self.data = data
+
+
+class Empty:
+    """std_msgs/Empty."""
+
+
+def fleet_node(**params: Any) -> Any:
+    """The warehouse's coordinator node, middleware aside, its commands std_msgs/Empty."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_onboard import FakeNode
+
+    node = FakeNode("examples/warehouse.rscd", "controller", **params)
+    for topic in node.outputs.values():
+        topic.type = Empty
+    return node
+
+
+def test_a_fleet_node_takes_tasks_on_its_topic_and_publishes_the_queue() -> None:
+    node = fleet_node(wait_for_data=False)
+    assert node.dispatcher is not None and node.supervisor.tasks is node.dispatcher
+    node.checkpoint()
+    assert [name for name, _ in node.texts if name == "robosc/tasks"] == ["robosc/tasks"]  # the empty queue
+    node.texts.clear()
+    node.task_given(Message("bot2: shelf depot"))
+    node.task_given(Message('{"stops": ["shlf"], "id": "bad"}'))
+    node.task_given(Message("{"))
+    queues = [json.loads(text) for name, text in node.texts if name == "robosc/tasks"]
+    last = queues[-1]
+    assert [(t["id"], t["state"]) for t in last["tasks"]] == [("task1", "queued"), ("bad", "failed"), ("task3", "failed")]
+    assert last["tasks"][1]["why"].startswith("'shlf' is no location of bot")
+    assert last["tasks"][2]["why"].startswith("a task in JSON could not be read")
+    assert ("error", "task bad refused: " + last["tasks"][1]["why"]) in node.logs
+    node.cycle()  # assigned to bot2, whose way needs the door: it is opened
+    assert json.loads(node.queue_text())["tasks"][0]["by"] == "bot2"
+    assert [name for name, _ in node.published] == ["open_door"]
+    response = node.serve_queue(None, Message(None))
+    assert response.success is True and json.loads(response.message)["counts"] == {
+        "assigned": 1, "done": 0, "failed": 2, "queued": 0}
+
+
+def test_a_node_without_a_fleet_has_no_tasks_and_the_random_policy_is_a_parameter() -> None:
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_onboard import FakeNode
+
+    assert FakeNode("examples/line_follower.rscd", "controller").dispatcher is None
+    node = fleet_node(policy="random")
+    assert node.dispatcher is not None and node.dispatcher.policy == "random"
+    bad = fleet_node(policy="fair")
+    assert bad.dispatcher is not None and bad.dispatcher.policy == "purpose"
+    assert any("policy must be one of purpose, random, not 'fair'" in text for _, text in bad.logs)

@@ -1,0 +1,216 @@
+"""Throughput of a fleet (issue 46, part 4): the work a fleet gets done, against the world's
+physical bound and the rule other fleet managers use, in one run of this script.
+
+For each world and fleet size, K tasks per robot (the world's ``stops``, given at run time
+through the coordinator's dispatcher, as ``robosc sim`` gives them), driven in this process by
+the generated coordinator module (the same module and dispatcher the ROS node runs):
+
+* **robosc**: the synthesized supervisor, the coordinator's policy ``purpose`` (the default);
+* **random**: the same supervisor, the original tool's random choice among what it allows;
+* **reservation**: no supervisor, the rule "enter the next cell only while no other robot holds
+  it" (the model's requirements without what synthesis added), first come first served: the
+  same policy, the robot waiting longest first (Open-RMF's reservations, openTCS's blocks);
+* **bound**: the world's physical bound, from each robot driving its task alone (no other
+  robot moving, no person, the door open): tasks per hour <= 3600 N / max(the longest lone
+  task, the busiest one-robot zone's occupancy per round of N tasks). A zone takes one robot at
+  a time: each cell (each fits one robot) and, in the warehouse, the whole aisle (a dead end
+  one robot wide: robots cannot pass each other in it, so one robot at a time does its task
+  there). Every run must take at least that long whatever coordinates it.
+
+Per run: tasks per simulated hour and its share of the bound, the wait per task (the time from
+a task's assignment to its end beyond the same robot's lone time: what sharing cost it) mean and
+longest, tasks per robot (min/max), door operations per task, collisions and how the run ended
+(a deadlock: no robot got on for 60 s).
+
+    python benchmarks/throughput.py [--worlds warehouse lane swap crossing] [--sizes 4 8 16] [--tasks 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+AISLE = ("c1", "c2", "c3", "shelf")  # the warehouse's dead-end aisle: one robot in it at a time
+STALL = 60.0
+
+
+def replaced(record: Any, **changes: Any) -> Any:
+    """A copy of a robosc record with some fields changed."""
+    fields = {name: getattr(record, name) for name in record.__record_options__}
+    fields.update(changes)
+    return type(record)(**fields)
+
+
+def worlds(name: str, robots: int) -> tuple[Any, Any, str] | None:
+    """(world, synthesis result, note) of a world at a fleet size, or None where the world has
+    no room for that many."""
+    from robosc.api import synthesize_file
+    from robosc.sim.world import load_world
+
+    if name == "warehouse":
+        world = load_world(ROOT / "examples/worlds" / ("warehouse.yaml" if robots <= 8 else "warehouse_large.yaml"))
+        if robots > len(world.starts):
+            return None
+        return world, synthesize_file(ROOT / "examples/warehouse.rscd", sizes={"bot": robots}), ""
+    model, file = {"lane": ("lane", "lane"), "swap": ("lane", "lane"), "crossing": ("crossing", "crossing")}[name]
+    world = load_world(ROOT / "examples/worlds" / f"{file}.yaml")
+    if robots != len(world.starts):
+        return None
+    return world, synthesize_file(ROOT / "examples/scenarios" / f"{model}.rscd"), ""
+
+
+def modules(result: Any) -> dict[str, Any]:
+    """The coordinator module of the supervisor and of the reservation rule (its requirements alone)."""
+    from robosc.api import plan_supervisor
+    from robosc.debug.simulator import load_module
+    from robosc.synthesis.result import EventGuard, SynthesisResult
+
+    alone = tuple(EventGuard(g.event, g.required, None) for g in result.guards)
+    rule = SynthesisResult(result.network, result.method, True, alone, result.reachable_states, result.seconds)
+    supervised = load_module(plan_supervisor(result))
+    return {"robosc": supervised, "random": supervised, "reservation": load_module(plan_supervisor(rule))}
+
+
+def lone(world: Any, module: Any, robots: int) -> tuple[list[float], list[Counter[str]]]:
+    """Each robot driving its task alone (the others at home, no person, the door open): its
+    time and its seconds in each cell (and in the warehouse's aisle)."""
+    from robosc.sim.fleet import FleetWorld, instances
+
+    quiet = replaced(world, fleet=replaced(world.fleet, person=None))
+    names = instances(module)[:robots]
+    times: list[float] = []
+    zones: list[Counter[str]] = []
+    legs = len(world.fleet.task_of(0))
+    for k, name in enumerate(names):
+        fw = FleetWorld(quiet, names)
+        if fw.door is not None:
+            fw.command("open_door")
+            while fw.door.state != "open":
+                fw.step()
+        start = fw.sim.time
+        inside: Counter[str] = Counter()
+        legs = len(world.fleet.task_of(k))
+        for _ in range(legs):
+            fw.command(f"{name}.go")
+            while True:
+                said = [answer for answer, _ in fw.step()]
+                pose = fw.sim.bodies[k].pose
+                cell = fw.fleet.cell(pose.x, pose.y)
+                if cell:
+                    inside[cell] += fw.sim.world.step
+                    if cell in AISLE:
+                        inside["aisle"] += fw.sim.world.step
+                if f"{name}.arrived" in said:
+                    break
+                if f"{name}.stopped" in said:
+                    fw.command(f"{name}.go")
+                if fw.sim.time - start > 3600:
+                    raise RuntimeError(f"{name} alone did not finish its task")
+        times.append(fw.sim.time - start)
+        zones.append(inside)
+    return times, zones
+
+
+def bound(world_name: str, times: list[float], zones: list[Counter[str]]) -> tuple[float, str]:
+    """Tasks per hour no coordinator can beat, and what limits it."""
+    robots = len(times)
+    limits = {"the longest lone task": max(times)}
+    cells = {cell for z in zones for cell in z if cell != "aisle" and cell not in ("depot", "west", "east")}
+    if world_name == "warehouse":
+        cells = {"aisle"}
+    for cell in cells:  # one robot at a time: a round of one task per robot takes at least this
+        limits[f"{cell} (one robot at a time)"] = sum(z[cell] for z in zones)
+    what = max(limits, key=lambda k: limits[k])
+    return 3600.0 * robots / limits[what], what
+
+
+def run(world: Any, module: Any, robots: int, tasks: int, policy: str, lone_time: float, seed: int = 0) -> dict[str, Any]:
+    """One run; its time-out four times what the tasks take one after the other, each alone."""
+    from robosc.sim.fleet import FleetRun
+    from robosc.sim.run import drive
+
+    doors: Counter[str] = Counter()
+
+    def on_event(record: dict[str, Any]) -> None:
+        if record["controllable"] and record["event"] in ("open_door", "close_door"):
+            doors[record["event"]] += 1
+
+    control = FleetRun(world, module, robots, seed=seed, tasks=tasks, stall=STALL, policy=policy, on_event=on_event)
+    started = time.monotonic()
+    report = drive(control, timeout=max(600.0, 4.0 * robots * tasks * lone_time))
+    d = control.dispatcher
+    assert d is not None
+    done = [t for t in d.tasks.values() if t.state == "done"]
+    return {"report": report, "done": done, "by": Counter(t.by for t in done), "doors": sum(doors.values()),
+            "wall": time.monotonic() - started}
+
+
+def rows(names: list[str], sizes: list[int], tasks: int) -> Any:
+    for name in names:
+        for robots in sizes if name == "warehouse" else [0]:
+            made = worlds(name, robots if robots else 0) if robots else None
+            if not robots:  # the scenarios' worlds come with their own fleet
+                from robosc.sim.world import load_world
+
+                file = {"lane": "lane", "swap": "lane", "crossing": "crossing"}[name]
+                robots = len(load_world(ROOT / "examples/worlds" / f"{file}.yaml").starts)
+                made = worlds(name, robots)
+            if made is None:
+                continue
+            world, result, _ = made
+            each = tasks * (4 if name == "swap" else 1)
+            built = modules(result)
+            times, zones = lone(world, built["robosc"], robots)
+            limit, what = bound(name, times, zones)
+            yield name, robots, each, "bound", {"limit": limit, "what": what, "times": times}
+            for who in ("robosc", "random", "reservation"):
+                policy = "random" if who == "random" else "purpose"
+                out = run(world, built[who], robots, each, policy, statistics.mean(times))
+                out["times"] = times
+                out["limit"] = limit
+                yield name, robots, each, who, out
+
+
+def line(name: str, robots: int, tasks: int, who: str, out: dict[str, Any]) -> str:
+    if who == "bound":
+        return (f"| {name} | {robots} | {tasks} | bound | {out['limit']:.0f} | 100 % | - | - | - | - | - | "
+                f"{out['what']}; lone task {statistics.mean(out['times']):.0f} s |")
+    report = out["report"]
+    done = out["done"]
+    hours = report.simulated / 3600.0
+    rate = len(done) / hours if hours > 0 else 0.0
+    index = {f"bot{k + 1}": k for k in range(robots)}
+    waits = [max(0.0, (t.done_at - t.assigned_at) - out["times"][index[t.by]]) for t in done]
+    per = [out["by"].get(f"bot{k + 1}", 0) for k in range(robots)]
+    ended = "ok" if report.ok else report.why.split(":")[0]
+    wait = f"{statistics.mean(waits):.0f} / {max(waits):.0f}" if waits else "-"
+    doors = f"{out['doors'] / len(done):.1f}" if done else "-"
+    return (f"| {name} | {robots} | {tasks} | {who} | {rate:.0f} | {100 * rate / out['limit']:.0f} % | {wait} | "
+            f"{min(per)}/{max(per)} | {doors} | {report.collisions} | {ended} | {len(done)} of {robots * tasks} tasks, "
+            f"{report.simulated:.0f} s simulated in {out['wall']:.0f} s |")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--worlds", nargs="*", default=["warehouse", "lane", "swap", "crossing"])
+    parser.add_argument("--sizes", nargs="*", type=int, default=[4, 8, 16])
+    parser.add_argument("--tasks", type=int, default=2)
+    args = parser.parse_args(argv)
+    print("| world | robots | tasks each | coordinator | tasks per hour | of the bound | wait per task, s mean / longest "
+          "| tasks per robot min/max | door operations per task | collisions | ended | |")
+    print("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|---|")
+    for name, robots, tasks, who, out in rows(args.worlds, args.sizes, args.tasks):
+        print(line(name, robots, tasks, who, out), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
