@@ -131,6 +131,15 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
                     shoot(browser, tmp_path, "fleet_view_person.png")
             time.sleep(0.3)
         assert reserved and person_cell, page(browser)
+        # the task queue, each robot's task and how long it has waited
+        queue, tasks, waited = browser.execute_script(
+            "return [document.getElementById('queue').textContent,"
+            " Array.from(document.querySelectorAll('[id^=\"task:\"]')).map(e => e.textContent),"
+            " Array.from(document.querySelectorAll('[id^=\"waited:\"]')).map(e => e.textContent)];"
+        )
+        assert re.fullmatch(r"tasks: \d done · \d under way · \d queued", queue), queue
+        assert any(re.fullmatch(r"task\d: (\[shelf\] -> depot|shelf -> \[depot\])", t) for t in tasks), tasks
+        assert any(re.fullmatch(r"\d+ s", w) for w in waited), waited
 
         # a robot on demand: its automaton's locations, the current one marked as its row says
         browser.find_element("id", "robot:bot2").click()
@@ -147,7 +156,8 @@ def test_sim_view_shows_the_fleet_on_its_map_live(browser: Any, tmp_path: Path) 
         # the event list by robot
         assert wait_until(lambda: len(page(browser)["feed"]) >= 20, 30)
         select = browser.find_element("id", "filter")
-        for value, wanted in (("bot2", lambda e: e.startswith("bot2.")), ("-", lambda e: not e.startswith("bot"))):
+        # (bot1 first: the coordinator gives the first task to bot1, and the others wait their turn)
+        for value, wanted in (("bot1", lambda e: e.startswith("bot1.")), ("-", lambda e: not e.startswith("bot"))):
             browser.execute_script("arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'));", select, value)
             shown = [line.split(" ")[1] for line in page(browser)["feed"]]
             assert shown and all(wanted(e) for e in shown), (value, shown)
