@@ -1,6 +1,12 @@
 """Throughput of a fleet (issue 46, part 4): the work a fleet gets done, against the world's
 physical bound and the rule other fleet managers use, in one run of this script.
 
+Worlds: the warehouse (examples/worlds/warehouse.yaml, warehouse_large.yaml for 16 robots, the
+person walking in) and, written for each size by benchmarks/fleet_worlds.py, the lane (a
+corridor one robot wide, half the robots homed at each end, each crossing to the far end and
+back), swap (the same, SWAPS times the tasks: the robots pass each other again and again) and
+the crossing (two such streets that cross, a quarter of the robots at each end).
+
 For each world and fleet size, K tasks per robot (the world's ``stops``, given at run time
 through the coordinator's dispatcher, as ``robosc sim`` gives them), driven in this process by
 the generated coordinator module (the same module and dispatcher the ROS node runs):
@@ -40,6 +46,7 @@ sys.path.insert(0, str(ROOT / "benchmarks"))
 
 AISLE = ("c1", "c2", "c3", "shelf")  # the warehouse's dead-end aisle: one robot in it at a time
 STALL = 60.0
+SWAPS = 3  # swap: the lane with this many times the tasks, the robots passing each other again and again
 
 
 def replaced(record: Any, **changes: Any) -> Any:
@@ -49,9 +56,10 @@ def replaced(record: Any, **changes: Any) -> Any:
     return type(record)(**fields)
 
 
-def worlds(name: str, robots: int) -> tuple[Any, Any, str] | None:
-    """(world, synthesis result, note) of a world at a fleet size, or None where the world has
-    no room for that many."""
+def worlds(name: str, robots: int) -> tuple[Any, Any] | None:
+    """(world, synthesis result) of a world at a fleet size, or None where the world has no
+    room for that many: the warehouse's world files (eight homes; sixteen in the large one); the
+    lane (also for swap) and the crossing written for the size by benchmarks/fleet_worlds.py."""
     from robosc.api import synthesize_file
     from robosc.sim.world import load_world
 
@@ -59,12 +67,16 @@ def worlds(name: str, robots: int) -> tuple[Any, Any, str] | None:
         world = load_world(ROOT / "examples/worlds" / ("warehouse.yaml" if robots <= 8 else "warehouse_large.yaml"))
         if robots > len(world.starts):
             return None
-        return world, synthesize_file(ROOT / "examples/warehouse.rscd", sizes={"bot": robots}), ""
-    model, file = {"lane": ("lane", "lane"), "swap": ("lane", "lane"), "crossing": ("crossing", "crossing")}[name]
-    world = load_world(ROOT / "examples/worlds" / f"{file}.yaml")
-    if robots != len(world.starts):
+        return world, synthesize_file(ROOT / "examples/warehouse.rscd", sizes={"bot": robots})
+    import fleet_worlds
+
+    if name in ("lane", "swap") and robots % 2 == 0:
+        world_text, model_text = fleet_worlds.lane(robots // 2)
+    elif name == "crossing" and robots % 4 == 0:
+        world_text, model_text = fleet_worlds.crossing(robots // 4)
+    else:
         return None
-    return world, synthesize_file(ROOT / "examples/scenarios" / f"{model}.rscd"), ""
+    return fleet_worlds.load(world_text), fleet_worlds.synthesized(model_text)
 
 
 def modules(result: Any) -> dict[str, Any]:
@@ -123,7 +135,7 @@ def bound(world_name: str, times: list[float], zones: list[Counter[str]]) -> tup
     """Tasks per hour no coordinator can beat, and what limits it."""
     robots = len(times)
     limits = {"the longest lone task": max(times)}
-    cells = {cell for z in zones for cell in z if cell != "aisle" and cell not in ("depot", "west", "east")}
+    cells = {cell for z in zones for cell in z if cell not in ("aisle", "depot")}
     if world_name == "warehouse":
         cells = {"aisle"}
     for cell in cells:  # one robot at a time: a round of one task per robot takes at least this
@@ -155,18 +167,12 @@ def run(world: Any, module: Any, robots: int, tasks: int, policy: str, lone_time
 
 def rows(names: list[str], sizes: list[int], tasks: int) -> Any:
     for name in names:
-        for robots in sizes if name == "warehouse" else [0]:
-            made = worlds(name, robots if robots else 0) if robots else None
-            if not robots:  # the scenarios' worlds come with their own fleet
-                from robosc.sim.world import load_world
-
-                file = {"lane": "lane", "swap": "lane", "crossing": "crossing"}[name]
-                robots = len(load_world(ROOT / "examples/worlds" / f"{file}.yaml").starts)
-                made = worlds(name, robots)
+        for robots in sizes:
+            made = worlds(name, robots)
             if made is None:
                 continue
-            world, result, _ = made
-            each = tasks * (4 if name == "swap" else 1)
+            world, result = made
+            each = tasks * (SWAPS if name == "swap" else 1)
             built = modules(result)
             times, zones = lone(world, built["robosc"], robots)
             limit, what = bound(name, times, zones)
