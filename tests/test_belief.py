@@ -163,7 +163,9 @@ def test_no_state_is_written_to_disk(tmp_path: Path, monkeypatch: pytest.MonkeyP
 
 # ---- commands on their way -------------------------------------------------------------------------
 def warehouse(**params: Any) -> Node:
-    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, trust_initial_state=True, **params)
+    # the random choice: each cycle sends one of the commands the supervisor allows
+    node = Node("docs/models/warehouse_zero_time.rscd", rate=40.0, seed=3, trust_initial_state=True, policy="random",
+                **params)
     node.acknowledges = True
     return node
 

@@ -9,6 +9,7 @@ every robot gets past the shelf (no deadlock)."""
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import time
@@ -132,25 +133,37 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
     for command, answer in ANSWERS.items():
         listen(command, f"/depot/{command}", answer)
         publishers[answer] = ros2.node.create_publisher(Empty, f"/depot/{answer}", 10)
+    # the operator: a task per robot on the coordinator's task topic, the queue read back
+    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from std_msgs.msg import String
+
+    give = ros2.node.create_publisher(String, "/depot/robosc/task", 10)
+    queues: list[dict[str, Any]] = []
+    latched = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    ros2.node.create_subscription(String, "/depot/robosc/tasks", lambda m: queues.append(json.loads(m.data)), latched)
     start = (
         f". {workspace}/install/setup.bash && exec {node} --ros-args -r __ns:=/depot"
         f" -p rate:=40.0 -p seed:=3 -p event_log:={log}"
     )
     ros2.reports(initial_states(MODEL), "/depot")  # the robots and the door say where they start
     ros2.processes.start("coordinator", ["/bin/bash", "-c", start], ros2.env)
-    for publisher in publishers.values():
+    for publisher in [*publishers.values(), give]:
         ros2.wait_subscribed(publisher, 30)
+    for robot in ROBOTS:
+        give.publish(String(data=f"{robot}: shelf depot"))
 
     def progress() -> bool:
         now = time.monotonic()
         for due in [a for a in answers if a[0] <= now]:
             answers.remove(due)
             publishers[due[1]].publish(Empty())
-        return all(len(received[f"{r}.go"]) >= TRIPS for r in ROBOTS)
+        return bool(queues) and queues[-1]["counts"].get("done") == len(ROBOTS)
 
-    assert ros2.spin_until(progress, 60), f"{ {k: len(v) for k, v in received.items()} }\n{ros2.processes.output()}"
+    assert ros2.spin_until(progress, 60), f"{ {k: len(v) for k, v in received.items()} }\n{queues[-1:]}\n{ros2.processes.output()}"
     ros2.processes.stop()
     check_run(log, received)
+    assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"]] == [(r, r, "done") for r in ROBOTS]
+    assert not any(received[f"{r}.dock"] for r in ROBOTS)  # nobody asked for a charge: none sent
 
 
 ROS1_ROBOTS = """
@@ -178,6 +191,11 @@ for robot in robots:
 for command, answer in answers.items():
     listen(command, "/depot/" + command, answer)
     publishers[answer] = publisher("/depot/" + answer, Empty, timeout=60)
+queues = []
+rospy.Subscriber("/depot/robosc/tasks", String, lambda m: queues.append(json.loads(m.data)), queue_size=100)
+give = publisher("/depot/robosc/task", String, timeout=60)
+for robot in robots:  # the operator: a task per robot on the coordinator's task topic
+    give.publish(String(data=robot + ": shelf depot"))
 
 def progress():
     with lock:
@@ -186,10 +204,10 @@ def progress():
             pending.remove(p)
     for _, answer in due:
         publishers[answer].publish(Empty())
-    with lock:
-        return all(len(received[r + ".go"]) >= {trips} for r in robots)
+    return bool(queues) and queues[-1]["counts"].get("done") == len(robots)
 
-assert wait_for(progress, 60), {{k: len(v) for k, v in received.items()}}
+assert wait_for(progress, 60), ({{k: len(v) for k, v in received.items()}}, queues[-1:])
+assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"]] == [(r, r, "done") for r in robots]
 time.sleep(0.5)
 with lock:
     done(received)
