@@ -310,3 +310,25 @@ def test_a_node_without_a_fleet_has_no_tasks_and_the_random_policy_is_a_paramete
     bad = fleet_node(policy="fair")
     assert bad.dispatcher is not None and bad.dispatcher.policy == "purpose"
     assert any("policy must be one of purpose, random, not 'fair'" in text for _, text in bad.logs)
+
+
+def test_a_task_to_a_state_the_supervisor_never_lets_a_robot_reach_is_refused() -> None:
+    # a robot may wander away from home only while inside the cell: never, so it is never away
+    wandering = (
+        CELL.replace(
+            "initial marked state home { on request to enter goto inside }",
+            "initial marked state home { on request to enter goto inside\n"
+            "                on request to wander goto away }\n"
+            "            state away { on request to leave goto home }",
+        )
+        .replace(
+            "incoming message leave with type: none",
+            "incoming message leave with type: none\n        incoming message wander with type: none",
+        )
+        .replace("for r in bot {", "for r in bot {\n        requirement r.wander needs r.inside")
+    )
+    for robots in ("3", "2"):  # counted, and followed one by one
+        fleet = Fleet(wandering.replace("bot[3]", f"bot[{robots}]"))
+        task = fleet.tasks.submit(["away"])
+        assert (task.state, task.why) == (FAILED, "the supervisor never lets bot reach away (robosc synthesize says why)")
+        assert fleet.tasks.submit(["inside"]).state == QUEUED

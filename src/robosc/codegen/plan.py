@@ -23,6 +23,7 @@ from robosc.language.source import Span
 from robosc.plant.domains import initial_value
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, event_of, received_type
 from robosc.record import record
+from robosc.synthesis.reached import reached_locations
 from robosc.synthesis.result import SynthesisResult
 
 K = EventKind
@@ -743,7 +744,7 @@ class _Planner:
             tuple((name, code) for code, name in (self.names.shared or {}).items()),
             tuple((name, fields) for fields, name in (self.guards.tallies or {}).items()),
             drivers(self.network),
-            *routes(self.network, self.automaton_field),
+            *routes(self.network, self.automaton_field, reached_locations(self.result)),
         )
 
 

@@ -36,8 +36,9 @@ class Route:
 
 
 # a shape: the edges (from, event, to), an event of the component's own written ".go" (self-loops
-# left out: they lead nowhere), its marked locations, its initial location
-Shape = tuple[tuple[tuple[str, str, str], ...], tuple[str, ...], str]
+# left out: they lead nowhere), its marked locations, its initial location, the locations no
+# controlled run reaches
+Shape = tuple[tuple[tuple[str, str, str], ...], tuple[str, ...], str, tuple[str, ...]]
 
 
 def drivers(network: Network) -> tuple[Driver, ...]:
@@ -68,8 +69,11 @@ def drivers(network: Network) -> tuple[Driver, ...]:
     return tuple(out)
 
 
-def routes(network: Network, field_of: Mapping[Automaton, str]) -> tuple[tuple[Route, ...], tuple[Shape, ...]]:
-    """Each component automaton as a :class:`Route` (``field_of``: its location field), and the
+def routes(
+    network: Network, field_of: Mapping[Automaton, str], reached: Mapping[str, frozenset[str]]
+) -> tuple[tuple[Route, ...], tuple[Shape, ...]]:
+    """Each component automaton as a :class:`Route` (``field_of``: its location field;
+    ``reached``: the names of its locations a controlled run reaches, by automaton), and the
     shapes they share (an instance's own events written from its ".": the copies share one)."""
     found: list[Route] = []
     shapes: dict[Shape, int] = {}
@@ -85,6 +89,8 @@ def routes(network: Network, field_of: Mapping[Automaton, str]) -> tuple[tuple[R
             if e.source is not e.target
         )
         marked = tuple(location.name for location in automaton.locations if location.marked)
-        shape = shapes.setdefault((edges, marked, automaton.initial.name), len(shapes))
+        seen = reached.get(automaton.name)
+        never = tuple(loc.name for loc in automaton.locations if seen is not None and loc.name not in seen)
+        shape = shapes.setdefault((edges, marked, automaton.initial.name, never), len(shapes))
         found.append(Route(component.name, component.group, field_of[automaton], shape))
     return tuple(found), tuple(shapes)

@@ -1,6 +1,7 @@
 # -*- coding: utf-8 -*-
 """The components' automata as the task policy walks them (``tasks.py``): a generated module's
-``SHAPES`` and ``ROUTES``. A component's location is where it is on its route; the distance
+``SHAPES`` (edges, marked and initial locations, those the supervisor never lets it reach) and
+``ROUTES``. A component's location is where it is on its route; the distance
 from a location to a set of locations counts the edges (commands and answers alike) on the
 shortest way there in the component's own automaton, whatever the others do."""
 
@@ -16,10 +17,10 @@ class Route(object):
     """One component's automaton: its location field, its group of instances (or None), its
     edges by the location they leave (full event names), its marked and initial locations."""
 
-    __slots__ = ("component", "field", "group", "initial", "leaving", "locations", "marked", "shape")
+    __slots__ = ("component", "field", "group", "initial", "leaving", "locations", "marked", "never", "shape")
 
     def __init__(self, component: str, group: Optional[str], field: str, shape: int,
-                 edges: Sequence[Edge], marked: Sequence[str], initial: str) -> None:
+                 edges: Sequence[Edge], marked: Sequence[str], initial: str, never: Sequence[str] = ()) -> None:
         self.component, self.group, self.field, self.shape = component, group, field, shape
         self.leaving: Dict[str, List[Tuple[str, str]]] = {}
         locations = set([initial])
@@ -30,6 +31,7 @@ class Route(object):
         self.locations: FrozenSet[str] = frozenset(locations)
         self.marked: FrozenSet[str] = frozenset(marked)
         self.initial = initial
+        self.never: FrozenSet[str] = frozenset(never)  # no controlled run reaches these
 
     def events(self) -> FrozenSet[str]:
         return frozenset(name for edges in self.leaving.values() for name, _ in edges)
@@ -42,8 +44,8 @@ class Routes(object):
         self.route: Dict[str, Route] = {}
         self.order: List[str] = []  # the components in the module's order
         for component, group, field, shape in routes:
-            edges, marked, initial = shapes[shape]
-            self.route[component] = Route(component, group, field, shape, edges, marked, initial)
+            edges, marked, initial, never = shapes[shape]
+            self.route[component] = Route(component, group, field, shape, edges, marked, initial, never)
             self.order.append(component)
         self.shapes = shapes
         self._distances: Dict[Tuple[int, FrozenSet[str]], Dict[str, int]] = {}

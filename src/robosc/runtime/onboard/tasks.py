@@ -146,6 +146,8 @@ class Dispatcher(object):
         for stop in stops:
             if stop not in route.locations:
                 return "%r is no location of %s (its locations: %s)" % (stop, who, ", ".join(sorted(route.locations)))
+            if stop in route.never:
+                return "the supervisor never lets %s reach %s (robosc synthesize says why)" % (who, stop)
         here = route.initial
         for stop in stops:
             if not self.routes.reaches(robot, here, stop):
