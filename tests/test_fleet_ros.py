@@ -25,6 +25,7 @@ TASK = ("depot", "out1", "out2", "out3", "shelf", "back3", "back2", "back1")
 CELLS = ({"out1", "back1"}, {"out2", "back2"}, {"out3", "back3"}, {"shelf"})
 ANSWERS = {"open_door": "door_opened", "close_door": "door_closed"}  # the door's answer to each command
 TRIPS = 6  # gos per robot: past the shelf, on the way back
+BURST = 40  # tasks given at once (beyond any default queue depth)
 
 
 def replay(events: list[str]) -> dict[str, int]:
@@ -149,6 +150,8 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
     ros2.processes.start("coordinator", ["/bin/bash", "-c", start], ros2.env)
     for publisher in [*publishers.values(), give]:
         ros2.wait_subscribed(publisher, 30)
+    for _ in range(BURST):  # a burst of tasks no robot can do: each is in the queue, refused
+        give.publish(String(data="nowhere"))
     for robot in ROBOTS:
         give.publish(String(data=f"{robot}: shelf depot"))
 
@@ -162,7 +165,8 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
     assert ros2.spin_until(progress, 60), f"{ {k: len(v) for k, v in received.items()} }\n{queues[-1:]}\n{ros2.processes.output()}"
     ros2.processes.stop()
     check_run(log, received)
-    assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"]] == [(r, r, "done") for r in ROBOTS]
+    assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"][BURST:]] == [(r, r, "done") for r in ROBOTS]
+    assert queues[-1]["counts"]["failed"] == BURST  # none lost on the way
     assert not any(received[f"{r}.dock"] for r in ROBOTS)  # nobody asked for a charge: none sent
 
 
@@ -194,6 +198,8 @@ for command, answer in answers.items():
 queues = []
 rospy.Subscriber("/depot/robosc/tasks", String, lambda m: queues.append(json.loads(m.data)), queue_size=100)
 give = publisher("/depot/robosc/task", String, timeout=60)
+for _ in range({burst}):  # a burst of tasks no robot can do: each is in the queue, refused
+    give.publish(String(data="nowhere"))
 for robot in robots:  # the operator: a task per robot on the coordinator's task topic
     give.publish(String(data=robot + ": shelf depot"))
 
@@ -207,7 +213,8 @@ def progress():
     return bool(queues) and queues[-1]["counts"].get("done") == len(robots)
 
 assert wait_for(progress, 60), ({{k: len(v) for k, v in received.items()}}, queues[-1:])
-assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"]] == [(r, r, "done") for r in robots]
+assert [(t["robot"], t["by"], t["state"]) for t in queues[-1]["tasks"][{burst}:]] == [(r, r, "done") for r in robots]
+assert queues[-1]["counts"]["failed"] == {burst}, queues[-1]["counts"]  # none lost on the way
 time.sleep(0.5)
 with lock:
     done(received)
@@ -229,7 +236,7 @@ def test_ros1_coordinator_built_by_catkin_commands_each_robot_in_its_namespace(r
         f" namespace:=/depot rate:=40.0 seed:=3 event_log:={log}"
     )
     ros1.processes.start("roslaunch", ["/bin/bash", "-c", launch], {**ros1.env, "PATH": "/usr/bin:/bin"})
-    script = ROS1_ROBOTS.format(robots=list(ROBOTS), answers=ANSWERS, trips=TRIPS)
+    script = ROS1_ROBOTS.format(robots=list(ROBOTS), answers=ANSWERS, trips=TRIPS, burst=BURST)
     received = ros1.client(script, timeout=150, reports={"/depot": initial_states(MODEL)})
     ros1.processes.stop()
     check_run(log, received)

@@ -45,6 +45,7 @@ from robosc.sim.world import World
 NAMESPACE = "fleet"  # the coordinator's namespace on the simulation's graph
 POSE_SECONDS = 0.2  # simulated seconds between two poses of a robot (and at most POSE_RATE a real second)
 POSE_RATE = 10.0
+TAKEN_WITHIN = 30.0  # simulated seconds within which the coordinator's queue holds every task given
 
 # (direction, name, perf_counter seconds): an answer published ("out"), a command come ("in")
 Trace = Callable[[str, str, float], None]
@@ -295,6 +296,9 @@ def _run(
                 bridge.send("poses", poses=mine[owner])
         if on_step is not None:
             on_step(fleet)
+        taken = sum(int(n) for n in counts.values())
+        if given and taken < given and sim.time >= TAKEN_WITHIN:  # a task lost on its way is not done
+            return (False, f"the coordinator has {taken} of the {given} tasks given after {TAKEN_WITHIN:g} s"), ignored
         ended = fleet.verdict(tasks, timeout, stall, counts.get("done", 0) == given if given else None)
         if ended is not None:
             return ended, ignored

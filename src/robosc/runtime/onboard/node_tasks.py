@@ -25,6 +25,7 @@ TASK_TOPIC = "robosc/task"
 TASKS_TOPIC = "robosc/tasks"
 QUEUE_SERVICE = "robosc/queue"
 MAX_TASK_TEXT = 10000  # characters of one task message read at most
+TASK_DEPTH = 1000  # task messages queued for the node at most: an operator may give many at once
 
 
 def read_task(text: Any) -> Tuple[List[str], Optional[str], Optional[str]]:

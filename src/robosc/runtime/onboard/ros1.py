@@ -38,7 +38,7 @@ from .node import (
     controller_side,
     default_name,
 )
-from .node_tasks import QUEUE_SERVICE, TASK_TOPIC, TASKS_TOPIC
+from .node_tasks import QUEUE_SERVICE, TASK_DEPTH, TASK_TOPIC, TASKS_TOPIC
 
 SUCCEEDED = 3  # actionlib_msgs/GoalStatus.SUCCEEDED
 LOST = 9  # actionlib_msgs/GoalStatus.LOST
@@ -165,7 +165,7 @@ class SupervisorNode(NodeCore):
             self.text_publishers[TASKS_TOPIC] = rospy.Publisher(TASKS_TOPIC, self.text_type, queue_size=10, latch=True)
         # subscriptions and servers last: their callbacks need everything above
         if self.dispatcher is not None:
-            rospy.Subscriber(TASK_TOPIC, self.text_type, self.locked(self.task_given), queue_size=depth)
+            rospy.Subscriber(TASK_TOPIC, self.text_type, self.locked(self.task_given), queue_size=TASK_DEPTH)
             rospy.Service(QUEUE_SERVICE, self.trigger, self.locked(self.serve_queue_ros1))
         for topic in self.inputs.values():
             rospy.Subscriber(topic.name, topic.type, self.locked(self.stamped, topic), queue_size=depth)

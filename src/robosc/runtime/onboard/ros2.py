@@ -54,7 +54,7 @@ from .node import (
     controller_side,
     default_name,
 )
-from .node_tasks import QUEUE_SERVICE, TASK_TOPIC, TASKS_TOPIC
+from .node_tasks import QUEUE_SERVICE, TASK_DEPTH, TASK_TOPIC, TASKS_TOPIC
 
 SUCCEEDED = 4  # action_msgs/GoalStatus.STATUS_SUCCEEDED
 POLL_SECONDS = 0.05  # how often a call waiting for its server looks again
@@ -152,7 +152,8 @@ class SupervisorNode(Node, NodeCore):
         self.trigger_request = trigger.Request
         if self.dispatcher is not None:  # a fleet's coordinator: tasks at run time (node_tasks.py)
             self.text_publishers[TASKS_TOPIC] = self.create_publisher(self.text_type, TASKS_TOPIC, latched)
-            self.create_subscription(self.text_type, TASK_TOPIC, self.callback(self.task_given), reliable)
+            tasks = QoSProfile(depth=TASK_DEPTH, reliability=ReliabilityPolicy.RELIABLE)  # none lost in a burst
+            self.create_subscription(self.text_type, TASK_TOPIC, self.callback(self.task_given), tasks)
             self.create_service(trigger, QUEUE_SERVICE, self.callback(self.serve_queue))
         for component in self.supervisor.COMPONENTS:
             self.report_clients[component] = self.create_client(trigger, REPORT_PREFIX + component)

@@ -282,7 +282,7 @@ class FleetWiring(object):
         self,
         setup: Setup,
         channel: Channel,
-        publisher: Callable[[str, Any], Any],
+        publisher: Callable[..., Any],
         subscriber: Callable[[str, Any, Callable[[Any], None]], Any],
         service: Callable[[str, Callable[[], str]], Any],
     ) -> None:
@@ -305,7 +305,7 @@ class FleetWiring(object):
         )
         self.give = None  # type: Any
         if setup.tasks:  # as an operator gives tasks and watches the queue
-            self.give = (setup.tasks["give"], publisher(setup.tasks["give"], String))
+            self.give = (setup.tasks["give"], publisher(setup.tasks["give"], String, 1000))  # a burst of tasks: none lost
             self.subscriptions["queue"] = (setup.tasks["queue"], subscriber(setup.tasks["queue"], String, self._queue(channel)))
 
     @staticmethod

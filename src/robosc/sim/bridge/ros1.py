@@ -25,7 +25,9 @@ def main() -> None:
 
         return rospy.Service(name, SetBool, serve)
 
-    publisher = lambda name, kind: rospy.Publisher(name, kind, queue_size=10)  # noqa: E731
+    def publisher(name, kind, depth=10):  # type: (str, Any, int) -> Any
+        return rospy.Publisher(name, kind, queue_size=depth)
+
     subscriber = lambda name, kind, callback: rospy.Subscriber(name, kind, callback)  # noqa: E731
     def report_service(name: str, where: Callable[[], str]) -> Any:
         return rospy.Service(name, Trigger, lambda request: TriggerResponse(True, where()))

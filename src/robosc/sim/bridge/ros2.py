@@ -31,7 +31,9 @@ def main() -> None:
 
         return node.create_service(SetBool, name, serve)
 
-    publisher = lambda name, kind: node.create_publisher(kind, name, reliable)  # noqa: E731
+    def publisher(name: str, kind: Any, depth: int = 10) -> Any:
+        return node.create_publisher(kind, name, QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE))
+
     subscriber = lambda name, kind, callback: node.create_subscription(kind, name, callback, reliable)  # noqa: E731
     def report_service(name: str, where: Callable[[], str]) -> Any:
         def serve(request: Any, response: Any) -> Any:
