@@ -87,9 +87,9 @@ def wait_for(condition, timeout=10.0):
     return condition()
 
 
-def publisher(topic, kind, subscribers=1, timeout=10.0):
+def publisher(topic, kind, subscribers=1, timeout=10.0, queue_size=10):
     """A publisher, once the node under test has subscribed."""
-    pub = rospy.Publisher(topic, kind, queue_size=10)
+    pub = rospy.Publisher(topic, kind, queue_size=queue_size)
     if not wait_for(lambda: pub.get_num_connections() >= subscribers, timeout):
         raise AssertionError("nobody subscribed to " + topic)
     return pub

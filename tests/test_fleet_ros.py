@@ -138,7 +138,10 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from std_msgs.msg import String
 
-    give = ros2.node.create_publisher(String, "/depot/robosc/task", 10)
+    # (a writer keeps its last `depth` samples until they are delivered: a burst needs a deep one)
+    give = ros2.node.create_publisher(
+        String, "/depot/robosc/task", QoSProfile(depth=BURST + 10, reliability=ReliabilityPolicy.RELIABLE)
+    )
     queues: list[dict[str, Any]] = []
     latched = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     ros2.node.create_subscription(String, "/depot/robosc/tasks", lambda m: queues.append(json.loads(m.data)), latched)
@@ -160,7 +163,7 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
         for due in [a for a in answers if a[0] <= now]:
             answers.remove(due)
             publishers[due[1]].publish(Empty())
-        return bool(queues) and queues[-1]["counts"].get("done") == len(ROBOTS)
+        return bool(queues) and queues[-1]["counts"].get("done") == len(ROBOTS) and len(queues[-1]["tasks"]) > BURST
 
     assert ros2.spin_until(progress, 60), f"{ {k: len(v) for k, v in received.items()} }\n{queues[-1:]}\n{ros2.processes.output()}"
     ros2.processes.stop()
@@ -197,7 +200,7 @@ for command, answer in answers.items():
     publishers[answer] = publisher("/depot/" + answer, Empty, timeout=60)
 queues = []
 rospy.Subscriber("/depot/robosc/tasks", String, lambda m: queues.append(json.loads(m.data)), queue_size=100)
-give = publisher("/depot/robosc/task", String, timeout=60)
+give = publisher("/depot/robosc/task", String, timeout=60, queue_size={burst} + 10)  # a burst: a deep queue
 for _ in range({burst}):  # a burst of tasks no robot can do: each is in the queue, refused
     give.publish(String(data="nowhere"))
 for robot in robots:  # the operator: a task per robot on the coordinator's task topic
