@@ -252,3 +252,25 @@ def test_a_person_a_robot_keeps_standing_in_front_of_walks_round_it_after_a_whil
     assert walker.done, (x, y, now)  # round the robot and there
     assert WAIT_AT_MOST - dt <= waited <= WAIT_AT_MOST + 2 * dt  # it waited for the robot first
     assert closest >= GIVE_WAY - 0.05 * dt, closest
+
+
+def test_a_person_whose_spot_a_robot_stands_on_stands_where_they_are_and_walks_on() -> None:
+    """The person's next point is where a robot has stopped (it waits for the person to leave the
+    cell): after waiting WAIT_AT_MOST seconds the person takes the point as reached, stands where
+    they are for its seconds and walks on (before, they walked round the robot for ever, and the
+    warehouse of 16 robots on ROS 2 ended as a deadlock)."""
+    from robosc.sim.person import WAIT_AT_MOST, Walker
+    from robosc.sim.world import Person, Pose
+
+    person = Person(((0.0, 0.0, 0.0), (2.0, 0.0, 3.0), (0.0, 2.0, 0.0)), radius=0.25, speed=0.5, start=0.0)
+    walker = Walker(person, robot_radius=0.2)
+    robot = Pose(2.0, 0.0, 0.0)  # on the point the person is to stand at
+    x, y, now, dt, stood = 0.0, 0.0, 0.0, 0.1, 0.0
+    while not walker.done and now < 60:
+        vx, vy = walker.velocity(now, dt, x, y, [robot])
+        if walker.next == 2 and (vx, vy) == (0.0, 0.0):
+            stood += dt
+        x, y, now = x + vx * dt, y + vy * dt, now + dt
+    assert walker.done and math.hypot(x, y - 2.0) < 0.1, (x, y, now)  # on to the last point
+    assert 3.0 - dt <= stood <= 3.0 + 2 * dt  # it stood its seconds where it was
+    assert now > WAIT_AT_MOST

@@ -3,7 +3,10 @@ points in turn at the person's speed, standing at a point for its seconds. A per
 one whose next step would bring them within GIVE_WAY metres of a robot's edge waits where they
 are (people step aside for a robot that is already there; the robots keep out of the person's
 way as their model says), and after WAIT_AT_MOST seconds walks round the robot, stepping to a
-side where no step brings them closer to one."""
+side where no step brings them closer to one. A point of the walk that a robot stands on, for
+WAIT_AT_MOST seconds of waiting, counts as reached: the person stands where they are instead
+(a robot stopped on the person's spot would otherwise keep them walking round it for ever, and
+the robot waits for the person to leave)."""
 
 from __future__ import annotations
 
@@ -40,9 +43,11 @@ class Walker:
             return 0.0, 0.0
         tx, ty, stand = self.person.walk[self.next]
         distance = math.hypot(tx - x, ty - y)
-        if distance < REACHED:
-            self.next += 1
+        taken = any(math.hypot(tx - p.x, ty - p.y) < self.reach for p in robots)
+        if distance < REACHED or (taken and self.blocked_since is not None and now - self.blocked_since >= WAIT_AT_MOST):
+            self.next += 1  # there, or as near as a robot standing on the point lets them come
             self.standing_until = now + stand
+            self.blocked_since = None
             return 0.0, 0.0
         speed = min(self.person.speed, distance / dt)
         heading = math.atan2(ty - y, tx - x)
