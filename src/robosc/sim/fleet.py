@@ -37,7 +37,7 @@ from collections.abc import Callable
 from typing import Any
 
 from robosc.record import record
-from robosc.runtime.onboard.tasks import DONE, FAILED, Dispatcher
+from robosc.runtime.onboard.tasks import FAILED, Dispatcher
 from robosc.sim.report import FleetFigures, Report, report_of
 from robosc.sim.simulation import Simulation
 from robosc.sim.world import Fleet, Pose, World
@@ -340,18 +340,24 @@ class FleetWorld:
                 if status.collided_at is None:
                     status.collided_at, status.touched = self.sim.time, f"the door ({self.door.state})"
 
-    def verdict(self, tasks: int, timeout: float, stall: float, done: bool | None = None) -> tuple[bool, str] | None:
-        """Why the run ends now, or None: ``done`` says whether every task given is done (None:
-        no task was given; then each robot must have driven its legs ``tasks`` times)."""
+    def tally(self) -> tuple[dict[str, int], int]:
+        """The coordinator's tasks per state as last heard (:attr:`queue`), and how many it holds."""
+        counts = {state: int(n) for state, n in (self.queue.get("counts") or {}).items()}
+        return counts, sum(counts.values())
+
+    def verdict(self, tasks: int, timeout: float, stall: float, given: int = 0) -> tuple[bool, str] | None:
+        """Why the run ends now, or None: with ``given`` tasks given, the run ends well when the
+        coordinator's queue says that many are done; with none, when each robot has driven its
+        legs ``tasks`` times."""
         sim = self.sim
         hit = [(self.names[i], s.touched) for i, s in enumerate(sim.status) if s.collided_at is not None]
         if hit:
             named = {f"robot{i + 1}": name for i, name in enumerate(self.names)}
             said = "; ".join(f"{name} touched {named.get(what, what)}" for name, what in hit)
             return False, f"collision: {said} at t = {sim.time:.1f} s"
-        if done:
-            return True, f"all {tasks * len(self.names)} tasks given are done"
-        if done is None and all(s.tasks >= tasks for s in self.status):
+        if given and self.tally()[0].get("done", 0) == given:
+            return True, f"all {given} tasks given are done"
+        if not given and all(s.tasks >= tasks for s in self.status):
             return True, f"every robot did its {tasks} task(s)"
         if sim.time - self.progress >= stall:
             where = "; ".join(self.whereabouts(i) for i in range(len(self.names)))
@@ -363,8 +369,7 @@ class FleetWorld:
     def summary(self) -> str:
         """The tasks done so far and where each robot is and what it waits for (for a run
         stopped before its end)."""
-        counts = self.queue.get("counts") or {}
-        given = sum(int(n) for n in counts.values())
+        counts, given = self.tally()
         done = f"{counts.get('done', 0)}/{given} tasks done" if given else f"{sum(s.tasks for s in self.status)} tasks done"
         tasks, waited = self.doing(), self.waited()
         where = []
@@ -414,8 +419,7 @@ class FleetWorld:
 
     def progress_line(self) -> str:
         """Where the run is, in one line: simulated time, tasks done and queued, who waits longest."""
-        counts = self.queue.get("counts") or {}
-        given = sum(int(n) for n in counts.values())
+        counts, given = self.tally()
         line = f"t = {self.sim.time:.0f} s: {counts.get('done', 0)}/{given} tasks done, {counts.get('assigned', 0)} under way, {counts.get('queued', 0)} queued"
         waited = self.waited()
         if waited:
@@ -508,10 +512,11 @@ class FleetRun:
         # coordinator then chooses at random (each robot drives its legs `tasks` times)
         self.dispatcher: Dispatcher | None = None
         stops = self.world.fleet.stops
+        self.given = tasks * robots if stops else 0
         if stops:
             self.dispatcher = Dispatcher(self.coordinator, policy)
             self.coordinator.tasks = self.dispatcher
-            for _ in range(tasks * robots):
+            for _ in range(self.given):
                 task = self.dispatcher.submit(stops)
                 if task.state == FAILED:
                     raise FleetMisfit(f"{world.path}: the world's task {list(stops)} is refused: {task.why}")
@@ -534,10 +539,7 @@ class FleetRun:
 
     def ended(self, timeout: float) -> tuple[bool, str] | None:
         """Why the run ends now, or None (robosc.sim.run's loop asks after every step)."""
-        done = None
-        if self.dispatcher is not None:
-            done = self.dispatcher.counts()[DONE] == len(self.dispatcher.tasks)
-        return self.world.verdict(self.tasks, timeout, self.stall, done)
+        return self.world.verdict(self.tasks, timeout, self.stall, self.given)
 
     def interrupted(self) -> tuple[bool, str]:
         """How the run ends when it is stopped (Ctrl-C): what was done, what each robot waits for."""

@@ -251,7 +251,6 @@ def _run(
     """Steps the world at ``speed`` times real time, passing commands in and answers out (each
     through the node that offers its topic); with ``given`` tasks given, until the queue the
     coordinator publishes says they are done."""
-    counts: dict[str, int] = {}
     sim = fleet.sim
     ignored = 0
     started = time.monotonic()
@@ -266,8 +265,8 @@ def _run(
             for message in came:
                 if message.get("op") == "queue":
                     queue = _queue(message.get("text"))
-                    counts = queue.get("counts") or counts
-                    fleet.queue = queue
+                    if queue.get("counts"):
+                        fleet.queue = queue
                     refused = [t for t in queue.get("tasks", []) if t.get("state") == "failed"]
                     if refused:
                         return (False, f"task {refused[0].get('id')} refused: {refused[0].get('why')}"), ignored
@@ -296,10 +295,10 @@ def _run(
                 bridge.send("poses", poses=mine[owner])
         if on_step is not None:
             on_step(fleet)
-        taken = sum(int(n) for n in counts.values())
+        taken = fleet.tally()[1]
         if given and taken < given and sim.time >= TAKEN_WITHIN:  # a task lost on its way is not done
             return (False, f"the coordinator has {taken} of the {given} tasks given after {TAKEN_WITHIN:g} s"), ignored
-        ended = fleet.verdict(tasks, timeout, stall, counts.get("done", 0) == given if given else None)
+        ended = fleet.verdict(tasks, timeout, stall, given)
         if ended is not None:
             return ended, ignored
         session.pace(started, sim.time, speed)
