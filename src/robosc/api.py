@@ -234,14 +234,17 @@ def check_finish(result: SynthesisResult, options: SynthesisOptions | None = Non
     return check(result, options or DEFAULT)
 
 
-def enforce_finish(result: SynthesisResult, options: SynthesisOptions | None = None) -> SynthesisResult:
-    """``result``'s supervisor made to keep every robot able to finish (:func:`check_finish`):
-    the maximally permissive one under which, besides, each robot can always get to each of its
-    places (the monolithic method); ``result`` itself where no robot can be starved."""
+def enforce_finish(
+    result: SynthesisResult, options: SynthesisOptions | None = None, finish: Finish | None = None
+) -> SynthesisResult:
+    """``result``'s supervisor made to keep every robot able to finish (:func:`check_finish`;
+    ``finish``: its answer, where it was asked already): the maximally permissive one under
+    which, besides, each robot can always get to each of its places (the monolithic method);
+    ``result`` itself where no robot can be starved."""
     from robosc.synthesis.finish import finish_supervisor
     from robosc.synthesis.options import DEFAULT
 
-    return finish_supervisor(result, check_finish(result, options), options or DEFAULT)
+    return finish_supervisor(result, finish or check_finish(result, options), options or DEFAULT)
 
 
 def synthesize_file(

@@ -143,7 +143,7 @@ def synthesize(
     if finish is not None and result.ok:
         finished = check_finish(result, options)
         if finish == "enforce" and not finished.ok:
-            result = enforce_finish(result, options)
+            result = enforce_finish(result, options, finished)
             finished = check_finish(result, options) if result.ok else None
     if show_network:
         click.echo(network_listing(result.network))
