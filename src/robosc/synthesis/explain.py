@@ -18,11 +18,6 @@ from robosc.synthesis.result import Explanation, Fix, Step
 from robosc.synthesis.state import NetworkState
 
 
-def closure_forward(enc: Any, start: BDD, relations: list[Relation], inside: BDD) -> BDD:
-    """``start`` and every state of ``inside`` reachable from it over ``relations``."""
-    return within(enc, start, relations, enc.post, inside, "auto")
-
-
 def pick(fp: Any, states: BDD) -> NetworkState:
     """One state of ``states`` (the BDD's choice, so the same every run)."""
     enc = fp.enc
@@ -408,7 +403,7 @@ def _lost_places(fp: Any, state: NetworkState) -> list[str]:
         return []
     enc = fp.enc
     steps = [fp.relation[e].restrict(fp.required[e]) if e.controllable else fp.relation[e] for e in enc.network.events]
-    ahead = closure_forward(enc, fp.state(state), steps, fp.considered)
+    ahead = within(enc, fp.state(state), steps, enc.post, fp.considered, "auto")  # where it can still go
     return [f"{t.owner}.{t.name}" for t in targets if (ahead & enc.at(t)) == enc.false]
 
 
