@@ -332,3 +332,16 @@ def test_a_task_to_a_state_the_supervisor_never_lets_a_robot_reach_is_refused() 
         task = fleet.tasks.submit(["away"])
         assert (task.state, task.why) == (FAILED, "the supervisor never lets bot reach away (robosc synthesize says why)")
         assert fleet.tasks.submit(["inside"]).state == QUEUED
+
+
+def test_a_task_named_as_one_given_before_is_refused_under_a_name_of_its_own() -> None:
+    fleet = Fleet(CELL)
+    first = fleet.tasks.submit(["inside"], id="a")
+    again = fleet.tasks.submit(["inside"], id="a")
+    unread = fleet.tasks.refuse("a task in JSON could not be read", id="a")
+    assert [(t.id, t.state, t.why) for t in (first, again, unread)] == [
+        ("a", QUEUED, ""),
+        ("a#2", FAILED, "a task named 'a' was given already"),
+        ("a#3", FAILED, "a task in JSON could not be read"),
+    ]
+    assert [t["id"] for t in fleet.tasks.queue()] == ["a", "a#2", "a#3"]

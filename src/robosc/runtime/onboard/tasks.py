@@ -92,31 +92,30 @@ class Dispatcher(object):
     def submit(self, stops: Sequence[str], robot: Optional[str] = None, id: Optional[str] = None) -> Task:
         """Queue a task (assigned at the next :meth:`observe`), or refuse it at once: the task
         is returned failed, with why."""
-        self._numbers += 1
-        name = str(id) if id else "task%d" % self._numbers
-        task = Task(name, tuple(str(s) for s in stops) if isinstance(stops, (list, tuple)) else (), robot,
-                    self.clock())
+        task = self._new(id, tuple(str(s) for s in stops) if isinstance(stops, (list, tuple)) else (), robot)
         why = self._refusal(task, stops)
-        if name in self.tasks:
-            why = "a task named %r was given already" % name
-            task.id = "%s#%d" % (name, self._numbers)
+        if task.id in self.tasks:
+            why = "a task named %r was given already" % task.id
+        return self._enter(task, why)
+
+    def refuse(self, why: str, id: Optional[str] = None) -> Task:
+        """Note a task that could not even be read as failed, with why."""
+        return self._enter(self._new(id, (), None), why)
+
+    def _new(self, id: Optional[str], stops: Tuple[str, ...], robot: Optional[str]) -> Task:
+        self._numbers += 1
+        return Task(str(id) if id else "task%d" % self._numbers, stops, robot, self.clock())
+
+    def _enter(self, task: Task, why: str) -> Task:
+        """Keep ``task`` (under a name of its own), queued or, with ``why``, failed."""
+        if task.id in self.tasks:
+            task.id = "%s#%d" % (task.id, self._numbers)
         self.tasks[task.id] = task
         if why:
             self._finish(task, FAILED, why)
         else:
             self._pending = True
             self._changed(task)
-        self._forget()
-        return task
-
-    def refuse(self, why: str, id: Optional[str] = None) -> Task:
-        """Note a task that could not even be read as failed, with why."""
-        self._numbers += 1
-        task = Task(str(id) if id else "task%d" % self._numbers, (), None, self.clock())
-        if task.id in self.tasks:
-            task.id = "%s#%d" % (task.id, self._numbers)
-        self.tasks[task.id] = task
-        self._finish(task, FAILED, why)
         self._forget()
         return task
 
