@@ -28,11 +28,13 @@ ARC = 2.6  # metres from a gate's point to the homes round it
 CHUNK = 60  # states named in one requirement at most (robosc check refuses 100 operands in a row)
 
 
-def _name(k: int, positions: int) -> str:
+def state_name(k: int, positions: int) -> str:
+    """The state of a robot at position ``k`` of a route of ``positions`` (0: home)."""
     return "home" if k % positions == 0 else f"at_{k}"
 
 
-def _to(k: int, positions: int) -> str:
+def move_name(k: int, positions: int) -> str:
+    """The state of a robot on its way into position ``k``."""
     return "to_home" if k % positions == 0 else f"to_{k}"
 
 
@@ -44,7 +46,7 @@ def holding(route: tuple[str | None, ...], cell: str) -> list[str]:
     for k in range(1, positions):
         if route[k - 1] == cell:
             out = k + 1
-            for state in (_to(k, positions), f"stopped_{k}", _name(k, positions), _to(out, positions), f"stopped_{out}"):
+            for state in (move_name(k, positions), f"stopped_{k}", state_name(k, positions), move_name(out, positions), f"stopped_{out}"):
                 if state not in states:
                     states.append(state)
     return states
@@ -63,12 +65,12 @@ def model(name: str, routes: list[tuple[str | None, ...]]) -> str:
     for k in range(positions):
         nxt = k + 1
         initial = "initial marked " if k == 0 else ""
-        lines.append(f"            {initial}state {_name(k, positions)} {{ on request to go goto {_to(nxt, positions)} }}")
-        lines.append(f"            state {_to(nxt, positions)} {{")
-        lines.append(f"                on response from arrived goto {_name(nxt, positions)}")
+        lines.append(f"            {initial}state {state_name(k, positions)} {{ on request to go goto {move_name(nxt, positions)} }}")
+        lines.append(f"            state {move_name(nxt, positions)} {{")
+        lines.append(f"                on response from arrived goto {state_name(nxt, positions)}")
         lines.append(f"                on response from stopped goto stopped_{nxt}")
         lines.append("            }")
-        lines.append(f"            state stopped_{nxt} {{ on request to go goto {_to(nxt, positions)} }}")
+        lines.append(f"            state stopped_{nxt} {{ on request to go goto {move_name(nxt, positions)} }}")
     lines += ["        }", "    }"]
     for i, route in enumerate(routes, 1):
         for k in range(positions):
@@ -78,7 +80,7 @@ def model(name: str, routes: list[tuple[str | None, ...]]) -> str:
             others = [f"bot{j}.{s}" for j, other in enumerate(routes, 1) if j != i for s in holding(other, cell)]
             for start in range(0, len(others), CHUNK):  # (a long condition split over requirements)
                 part = " or ".join(others[start : start + CHUNK])
-                lines.append(f"    requirement bot{i}.go needs bot{i}.{_name(k, positions)} => !({part})")
+                lines.append(f"    requirement bot{i}.go needs bot{i}.{state_name(k, positions)} => !({part})")
     lines.append("}")
     return "\n".join(lines) + "\n"
 

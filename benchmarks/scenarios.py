@@ -22,8 +22,13 @@ import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+from fleet_worlds import holding, move_name, state_name  # noqa: E402  (the routes' states, written once)
+
 FOLDER = ROOT / "examples" / "scenarios"
 SWAPS = 4  # tasks each robot of the swap scenario does
 
@@ -55,24 +60,15 @@ HEADERS = {
 ROUTES = {"lane": LANE, "crossing": CROSSING}
 
 
+POSITIONS = 8  # a route's positions: home, then 1 .. 7
+
+
 def _name(k: int) -> str:
-    return "home" if k % 8 == 0 else f"at_{k}"
+    return state_name(k, POSITIONS)
 
 
 def _to(k: int) -> str:
-    return "to_home" if k % 8 == 0 else f"to_{k}"
-
-
-def holding(route: tuple[str | None, ...], cell: str) -> list[str]:
-    """The states in which a robot on ``route`` holds ``cell``: on its way into it, stopped on
-    that way, in it, and on its way out of it."""
-    states: list[str] = []
-    for k in range(1, 8):
-        if route[k - 1] == cell:
-            for state in (_to(k), f"stopped_{k}", _name(k), _to(k + 1), f"stopped_{(k + 1) % 8 or 8}"):
-                if state not in states:
-                    states.append(state)
-    return states
+    return move_name(k, POSITIONS)
 
 
 def model(name: str, routes: tuple[tuple[str | None, ...], ...]) -> str:
@@ -133,14 +129,20 @@ def coordinators(model_name: str) -> dict[str, object]:
     """The generated coordinator module of robosc's supervisor and of the hand-written rule."""
     from robosc.api import plan_supervisor, synthesize_file
     from robosc.debug.simulator import load_module
-    from robosc.synthesis.result import EventGuard, SynthesisResult
 
     result = synthesize_file(FOLDER / f"{model_name}.rscd")
     assert result.ok, result.explanation
     assert result.added_guards, "synthesis added nothing: the rule would be the supervisor"
-    alone = tuple(EventGuard(g.event, g.required, None) for g in result.guards)  # the requirements alone
-    rule = SynthesisResult(result.network, result.method, True, alone, result.reachable_states, result.seconds)
-    return {"robosc": load_module(plan_supervisor(result)), "rule": load_module(plan_supervisor(rule))}
+    return {"robosc": load_module(plan_supervisor(result)), "rule": load_module(plan_supervisor(rule(result)))}
+
+
+def rule(result: Any) -> Any:
+    """The hand-written rule as a synthesis result: the model's requirements alone, without what
+    synthesis added."""
+    from robosc.synthesis.result import EventGuard, SynthesisResult
+
+    alone = tuple(EventGuard(g.event, g.required, None) for g in result.guards)
+    return SynthesisResult(result.network, result.method, True, alone, result.reachable_states, result.seconds)
 
 
 def run_once(module: object, world: object, tasks: int, seed: int) -> object:

@@ -83,12 +83,10 @@ def modules(result: Any) -> dict[str, Any]:
     """The coordinator module of the supervisor and of the reservation rule (its requirements alone)."""
     from robosc.api import plan_supervisor
     from robosc.debug.simulator import load_module
-    from robosc.synthesis.result import EventGuard, SynthesisResult
+    from scenarios import rule
 
-    alone = tuple(EventGuard(g.event, g.required, None) for g in result.guards)
-    rule = SynthesisResult(result.network, result.method, True, alone, result.reachable_states, result.seconds)
     supervised = load_module(plan_supervisor(result))
-    return {"robosc": supervised, "random": supervised, "reservation": load_module(plan_supervisor(rule))}
+    return {"robosc": supervised, "random": supervised, "reservation": load_module(plan_supervisor(rule(result)))}
 
 
 def lone(world: Any, module: Any, robots: int) -> tuple[list[float], list[Counter[str]]]:
