@@ -17,6 +17,7 @@ from robosc.synthesis.counting.groups import robots_of
 from robosc.synthesis.counting.supervisor import CountedSupervisor
 from robosc.synthesis.counting.translate import at_least
 from robosc.synthesis.fixedpoints import reach
+from robosc.synthesis.reached import reached_locations
 from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Restriction, SynthesisResult
 
@@ -115,11 +116,12 @@ def synthesis_warnings(result: SynthesisResult) -> list[Diagnostic]:
     found = never_allowed(result)
     found += never_holding(result.network, lambda r: (reachable & enc.boolean(r.condition)) != enc.false)
     plant: Any = None
+    reached = reached_locations(result)
     for automaton in result.network.automata:
         if automaton.kind is not AutomatonKind.COMPONENT:
             continue
         for location in automaton.locations:
-            if (reachable & enc.at(location)) != enc.false:
+            if location.name in reached[automaton.name]:
                 continue
             # the states the plant reaches without a supervisor (requirements ignored)
             plant = reach(enc, fixpoint.initial, fixpoint.relation.values()) if plant is None else plant
@@ -160,16 +162,17 @@ def counted_warnings(result: SynthesisResult, supervisor: CountedSupervisor) -> 
 
     found = never_allowed(result) + never_holding(result.network, holds_somewhere)
     plant = None
+    reached = reached_locations(result)
     for group in fleet.groups:
         rep = group.rep.automata[0]
         robots = robots_of(group)
         for location in rep.locations:
+            if location.name in reached[rep.name]:
+                continue
             holding = [i for i, (locations, _) in enumerate(group.local) if locations[0] is location]
             somewhere = enc.false
             for index in holding:
                 somewhere |= enc.boolean(at_least(group.counters[index], 1))
-            if (reachable & somewhere) != enc.false:
-                continue
             plant = reach(enc, fp.initial, fp.relation.values()) if plant is None else plant
             if (plant & somewhere) == enc.false:
                 message, hint = (
