@@ -16,6 +16,9 @@ against where the robots really were.
 * **answers twice, and spurious**: every answer sent twice, a ``charged`` every second from a
   robot that is not charging. Forbidden commands, and answers written to the event log as
   events that no robot gave.
+* **answers again later**: every answer sent again 0.05 to 1.5 s after it (a flaky bridge, a
+  driver's retry), for 60 s. Forbidden commands, and the seconds at the end with no command (a
+  fleet that froze).
 * **the stop held, restarted**: the line follower stopped, killed, started again with its
   state file kept, and with it deleted: move commands in 8 s.
 
@@ -49,7 +52,9 @@ import revision as revisions  # noqa: E402
 import warehouse_drivers as drivers  # noqa: E402
 from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, follow, forbidden, take_driver  # noqa: E402
 
-PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3"]
+# the random choice: every command the supervisor allows is sent sooner or later, the hardest test
+# of what the coordinator believes (the default policy sends only what given tasks need)
+PARAMS = ["-p", "rate:=40.0", "-p", "seed:=3", "-p", "policy:=random"]
 
 
 def generate(model: str, out: Path, revision: str | None, work: Path) -> tuple[Path, str]:
@@ -273,6 +278,32 @@ def answers_twice(package: tuple[Path, str], work: Path) -> dict[str, Any]:
         graph.close()
 
 
+LATER = (0.05, 1.5)  # seconds after an answer that its second copy comes (a flaky bridge, a driver's retry)
+
+
+def quiet_at_the_end(log: Path, end: float) -> float:
+    """Seconds from the last command the coordinator decided to ``end`` (a fleet that froze sends
+    nothing more)."""
+    times = [r["time"] for r in log_of(log) if r.get("controllable")]
+    return round(end - max(times), 1) if times else round(end, 1)
+
+
+def answers_again(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    """Every answer sent again 0.05 to 1.5 s after it, for 60 s."""
+    graph = Graph(work)
+    log = work / "again.jsonl"
+    world = World(delay=0.2, twice=True, again=LATER)
+    wire = Ros2Wire(graph.node, graph.executor, world)
+    try:
+        graph.start(package, *PARAMS, "-p", f"event_log:={log}")
+        wire.run(60)
+        end = time.time()
+        found, checked = forbidden(log_of(log), world.received, world.sent)
+        return {"forbidden": len(found), "commands": checked, "seconds without a command at the end": quiet_at_the_end(log, end)}
+    finally:
+        graph.close()
+
+
 def answered_once(log: Path, received: Any, sent: Any) -> dict[str, Any]:
     """Forbidden commands, and the answers in the event log that no robot gave (duplicates and
     spurious answers taken as events)."""
@@ -363,7 +394,7 @@ class Master:
 
     def node(self, package: Path, log: Path) -> subprocess.Popen[Any]:
         script = next((package / "scripts").glob("*_node"))
-        return self.start([ROS1_PYTHON, str(script), "_rate:=40.0", "_seed:=3", f"_event_log:={log}"])
+        return self.start([ROS1_PYTHON, str(script), "_rate:=40.0", "_seed:=3", "_policy:=random", f"_event_log:={log}"])
 
     def close(self) -> None:
         for process in reversed(self.processes):
@@ -374,12 +405,12 @@ class Master:
 
 
 def ros1_world(
-    master: Master, work: Path, twice: bool, body: str, robots: tuple[str, ...] = ROBOTS
+    master: Master, work: Path, twice: bool, body: str, robots: tuple[str, ...] = ROBOTS, again: Any = 0.0
 ) -> subprocess.Popen[Any]:
     control = work / "control"
     script = (
         f"import sys\nsys.path.insert(0, {str(ROS1_HELPERS.parent)!r})\nfrom ros1_client import *\n"
-        + drivers.ROS1_WORLD.format(tests=str(ROOT / "tests"), robots=robots, twice=twice, control=str(control))
+        + drivers.ROS1_WORLD.format(tests=str(ROOT / "tests"), robots=robots, twice=twice, again=again, control=str(control))
         + body
     )
     return master.start([ROS1_PYTHON, "-c", script], stdout=subprocess.PIPE, text=True)
@@ -459,6 +490,24 @@ with lock:
         master.close()
 
 
+def ros1_answers_again(package: Path, work: Path) -> dict[str, Any]:
+    master = Master(work)
+    log = work / "again.jsonl"
+    try:
+        master.node(package, log)
+        body = """
+run(60)
+with lock:
+    done(json.loads(world.dump()))
+"""
+        result = ros1_result(ros1_world(master, work, True, body, again=LATER))
+        end = time.time()
+        found, checked = forbidden(log_of(log), result["received"], result["sent"])
+        return {"forbidden": len(found), "commands": checked, "seconds without a command at the end": quiet_at_the_end(log, end)}
+    finally:
+        master.close()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--baseline", default=None)
@@ -483,6 +532,7 @@ def main() -> None:
                     ("killed in the write-ahead window", killed_in_the_window, (warehouse, work / f"w{tag}")),
                     ("a driver killed", driver_killed, (warehouse, work / f"d{tag}")),
                     ("answers twice, and spurious", answers_twice, (warehouse, work / f"t{tag}")),
+                    ("answers again 0.05-1.5 s later", answers_again, (warehouse, work / f"a{tag}")),
                     ("stop held, restarted, state file kept", stop_held, (line, work / f"s{tag}", True)),
                     ("stop held, restarted, state file deleted", stop_held, (line, work / f"m{tag}", False)),
                 ]
@@ -491,6 +541,7 @@ def main() -> None:
                         ("ROS 1: killed three ways", ros1_killed_three_ways, (warehouse1, work / f"k1{tag}")),
                         ("ROS 1: a driver killed", ros1_driver_killed, (warehouse1, work / f"d1{tag}")),
                         ("ROS 1: answers twice, and spurious", ros1_answers_twice, (warehouse1, work / f"t1{tag}")),
+                        ("ROS 1: answers again 0.05-1.5 s later", ros1_answers_again, (warehouse1, work / f"a1{tag}")),
                     ]
                 if args.only:
                     scenarios = [x for x in scenarios if any(word in x[0] for word in args.only)]

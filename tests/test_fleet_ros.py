@@ -18,6 +18,7 @@ from typing import Any
 
 from ros_support import Ros1, Ros2, initial_states, logged_events, unavailable
 from test_build import COLCON, in_workspace, run
+from warehouse_world import Rules
 
 MODEL = "docs/models/warehouse_zero_time.rscd"
 ROBOTS = ("bot1", "bot2", "bot3")
@@ -122,6 +123,7 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
 
         def heard(_: Any) -> None:
             got.append(name)
+            happened(name)
             if answer is not None:
                 answers.append((time.monotonic() + 0.05, answer))
 
@@ -149,7 +151,13 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
         f". {workspace}/install/setup.bash && exec {node} --ros-args -r __ns:=/depot"
         f" -p rate:=40.0 -p seed:=3 -p event_log:={log}"
     )
-    ros2.reports(initial_states(MODEL), "/depot")  # the robots and the door say where they start
+    states = ros2.reports(initial_states(MODEL), "/depot")  # the robots and the door report where they are
+    truth = Rules()
+
+    def happened(event: str) -> None:  # a command the stand-ins got, or an answer they sent
+        truth.apply(event)
+        states.update((c, truth.report(c)) for c in states)
+
     ros2.processes.start("coordinator", ["/bin/bash", "-c", start], ros2.env)
     for publisher in [*publishers.values(), give]:
         ros2.wait_subscribed(publisher, 30)
@@ -162,6 +170,7 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
         now = time.monotonic()
         for due in [a for a in answers if a[0] <= now]:
             answers.remove(due)
+            happened(due[1])
             publishers[due[1]].publish(Empty())
         return bool(queues) and queues[-1]["counts"].get("done") == len(ROBOTS) and len(queues[-1]["tasks"]) > BURST
 
@@ -174,7 +183,14 @@ def test_ros2_coordinator_built_by_colcon_commands_each_robot_in_its_namespace(r
 
 
 ROS1_ROBOTS = """
+sys.path.insert(0, {tests!r})
+from warehouse_world import Rules
 start()
+states = REPORTED["/depot"]  # the robots and the door report where they are
+truth = Rules()
+def happened(event):  # a command the stand-ins got, or an answer they sent
+    truth.apply(event)
+    states.update((c, truth.report(c)) for c in states)
 robots = {robots!r}
 answers = {answers!r}
 received = {{}}
@@ -187,6 +203,7 @@ def listen(name, topic, answer):
     def heard(_):
         with lock:
             received[name].append(name)
+            happened(name)
             if answer is not None:
                 pending.append((time.time() + 0.05, answer))
     rospy.Subscriber(topic, Empty, heard, queue_size=100)
@@ -211,6 +228,7 @@ def progress():
         due = [p for p in pending if p[0] <= time.time()]
         for p in due:
             pending.remove(p)
+            happened(p[1])
     for _, answer in due:
         publishers[answer].publish(Empty())
     return bool(queues) and queues[-1]["counts"].get("done") == len(robots)
@@ -239,7 +257,7 @@ def test_ros1_coordinator_built_by_catkin_commands_each_robot_in_its_namespace(r
         f" namespace:=/depot rate:=40.0 seed:=3 event_log:={log}"
     )
     ros1.processes.start("roslaunch", ["/bin/bash", "-c", launch], {**ros1.env, "PATH": "/usr/bin:/bin"})
-    script = ROS1_ROBOTS.format(robots=list(ROBOTS), answers=ANSWERS, trips=TRIPS, burst=BURST)
+    script = ROS1_ROBOTS.format(robots=list(ROBOTS), answers=ANSWERS, trips=TRIPS, burst=BURST, tests=str(Path(__file__).parent))
     received = ros1.client(script, timeout=150, reports={"/depot": initial_states(MODEL)})
     ros1.processes.stop()
     check_run(log, received)

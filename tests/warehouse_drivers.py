@@ -72,7 +72,7 @@ from warehouse_world import World, COMMANDS, ANSWERS, ROBOTS, topic
 from std_srvs.srv import Trigger, TriggerResponse
 start()
 robots = {robots!r}  # the robots this world drives (the others have drivers of their own)
-world = World(delay=0.3, twice={twice!r}, again=0.0, muted=[r for r in ROBOTS if r not in robots])
+world = World(delay=0.3, twice={twice!r}, again={again!r}, muted=[r for r in ROBOTS if r not in robots])
 lock = threading.Lock()
 ours = lambda event: "." not in event or event.partition(".")[0] in robots
 publishers = dict((e, rospy.Publisher("/" + topic(e), Empty, queue_size=100)) for e in ANSWERS if ours(e))

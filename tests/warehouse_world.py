@@ -9,6 +9,7 @@ real situation.
 Plain Python 3.8+: Debian's python3 runs it in the ROS 1 client scripts."""
 
 import json
+import random
 import threading
 import time
 
@@ -85,14 +86,16 @@ class Rules:
 
 class World:
     """The robots and the door: commands change them at once, answers follow ``delay`` seconds
-    later; with ``twice``, every answer is sent again ``again`` seconds after it. Everything it
-    got and sent is kept with its time (``received``, ``sent``)."""
+    later; with ``twice``, every answer is sent again ``again`` seconds after it (a pair (low,
+    high): drawn between them, the same draws every run). Everything it got and sent is kept
+    with its time (``received``, ``sent``)."""
 
     def __init__(self, delay=0.2, twice=False, again=0.4, muted=()):
         self.rules = Rules()
         self.delay = delay
         self.twice = twice
-        self.again = again
+        draw = random.Random(47).uniform
+        self.again = (lambda: draw(*again)) if isinstance(again, (tuple, list)) else (lambda: again)
         self.muted = set(muted)  # robots whose drivers are dead: they get nothing
         self.due = []  # (when, answer, duplicate)
         self.received = []  # (time, command)
@@ -113,7 +116,7 @@ class World:
             name = f"{robot}.{answer}" if robot else answer
             self.due.append((now + self.delay, name, False))
             if self.twice:
-                self.due.append((now + self.delay + self.again, name, True))
+                self.due.append((now + self.delay + self.again(), name, True))
 
     def step(self, publish):
         """Send the answers that are due (``publish(answer)``)."""

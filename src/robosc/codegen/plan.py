@@ -196,6 +196,25 @@ class Plan:
     def uncontrollable(self) -> tuple[EventPlan, ...]:
         return tuple(e for e in self.events if not e.controllable)
 
+    @property
+    def replies(self) -> tuple[str, ...]:
+        """The uncontrollable events that answer a command: a component takes them in a location
+        a controllable event leads to (a driver's answer, which a retry or a bridge may send
+        twice); all that some component answers where a command's effect is not only a change of
+        location (its targets are not told here)."""
+        entered: set[tuple[str, str]] = set()
+        every = False
+        for e in self.controllable:
+            if e.moves is None:
+                every = True
+            else:
+                entered.update((field, target) for field, _, target in e.moves)
+        return tuple(
+            e.name
+            for e in self.uncontrollable
+            if e.answers and any(every or (field, place) in entered for field, places in e.answers for place in places)
+        )
+
     def event(self, name: str) -> EventPlan:
         return next(e for e in self.events if e.name == name)
 

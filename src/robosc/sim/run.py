@@ -218,12 +218,14 @@ def run_ros(
         session.wait_for(bridge, lambda m: m.get("op") == "ready", 60, "the simulator's node")
         for i, (name, log) in enumerate(zip(names, event_logs(folder, robots), strict=True)):
             # the simulation makes each robot where the model starts it, as it starts its controller
-            # (and never starts a controller again): the robots are where the model's initial state says
+            # (and never starts a controller again): the robots are where the model's initial state
+            # says; its side sends each answer once and offers no report to confirm one by
             given: dict[str, object] = {
                 "rate": float(rate),
                 "seed": seed + i,
                 "event_log": log,
                 "trust_initial_state": True,
+                "confirm_answers": False,
                 **(params or {}),
             }
             graph.controller(package, name, given)

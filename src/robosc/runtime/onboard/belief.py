@@ -13,7 +13,7 @@ import json
 import time
 from typing import Any, Callable, Dict, Optional, Tuple
 
-from .answers import Answers
+from .answers import Answers, moved
 from .reading import Unreadable, fits
 from .tables import Event
 from .unknown import TooMany, Unknown, completions, distinct
@@ -86,9 +86,12 @@ class Belief(Answers):
     def confirm(self, component: str, report: Any, since: Optional[float] = None) -> Optional[str]:
         """A report of where ``component`` is, from its driver: a location name, or an object
         with ``state`` (the location) and values of its variables by name. Taken (None) when
-        every value is one the component may have now; else nothing changes, and why is
-        returned. Variables it does not give stay as they are. ``since``: when (this wall clock)
-        the driver was asked; an answer stamped later may not be in the report: it is taken."""
+        every value is in its field's domain, else nothing changes and why is returned. A report
+        is the robot's own word: where it contradicts the belief (a value the component was not
+        thought able to have now), the belief is what was wrong; the report is taken, and a
+        warning says so. Variables it does not give stay as they are. ``since``: when (this
+        wall clock) the driver was asked; an answer stamped later may not be in the report: it
+        is taken."""
         fields = self.COMPONENTS.get(component)
         if fields is None:
             return "no component %s" % (component,)
@@ -102,6 +105,7 @@ class Belief(Answers):
         if not isinstance(report, dict):
             return "not a location or a JSON object"
         values: Dict[str, Any] = {}
+        contradicted: list[str] = []
         by_label = dict((self.LABELS[a], a) for a in fields)
         for key, value in report.items():
             attribute = by_label.get(component if key == "state" else "%s.%s" % (component, key))
@@ -113,10 +117,12 @@ class Belief(Answers):
             may = self.unconfirmed.get(attribute, ())
             if attribute in self.unconfirmed:
                 if may is not None and not any(type(v) is type(value) and v == value for v in may):
-                    return "%s: %r is not where it may be now (%s)" % (key, value, ", ".join(map(str, may)))
+                    contradicted.append("%s %r (the belief: %s)" % (key, value, " or ".join(map(repr, may))))
             elif not (type(getattr(self, attribute)) is type(value) and getattr(self, attribute) == value):
-                return "%s: %r, but it is known to be %r" % (key, value, getattr(self, attribute))
+                contradicted.append("%s %r (the belief: %r)" % (key, value, getattr(self, attribute)))
             values[attribute] = value
+        if contradicted:
+            self.warn("%s reported %s: the belief was wrong, the report is taken" % (component, ", ".join(contradicted)))
         for attribute, value in values.items():
             self.know(attribute, Data.wrap(value) if isinstance(value, (dict, list)) else value)
             if self.watching and self.awaited(attribute):
@@ -281,11 +287,16 @@ class Belief(Answers):
         stay possible: an answer may be spurious or a duplicate, so it tells where a component
         is only where every place it may be leads to the same one."""
 
+        doubt = self.confirm_answers and event.name in self.REPEATABLE
+        befores: list[list[Any]] = []
+
         def run() -> Any:
             why = self._not_taken(event.name, stamp)
             state = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
             if why is not None:
                 return why, state
+            if doubt:  # a second copy of an earlier answer leaves it where it was
+                befores.append(state)
             try:
                 getattr(self, event.method)(value)
             except Unreadable as error:
@@ -307,6 +318,53 @@ class Belief(Answers):
             return self._unreadable(event, unreadable[0])
         if all(why is not None for _, (why, _) in outcomes):
             return self.ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
-        self._settle_fields([state for _, (_, state) in outcomes])
+        states = [state for _, (_, state) in outcomes] + befores
+        if befores and self._settles_as_it_is(states):  # a copy, or an answer: the belief has both already
+            for field, _ in self.ANSWERS[event.name]:  # but something may have changed: ask at once
+                component = self.COMPONENT_OF[field]
+                if field in self.unconfirmed and component not in self.doubted:
+                    self.doubted.append(component)
+            return self.ignore(event.name, "it changes nothing the node believes (it may be a second copy)")
+        self._settle_fields(states)
         self._delivered(event, value, saved, stamp)
         return True
+
+    def _settles_as_it_is(self, states: list[list[Any]]) -> bool:
+        """Whether :meth:`_settle_fields` would leave every field as it is: known where it has its
+        value in all ``states``, else unconfirmed with the values it has now."""
+        for index, attribute in enumerate(self.ATTRIBUTES):
+            earlier = self.unconfirmed.get(attribute, ())
+            if earlier is None:
+                continue  # it may have any value, and keeps that
+            found: list[Any] = []
+            for state in states:
+                value = state[index]
+                found.extend(earlier if isinstance(value, Unknown) else (value,))
+            values = distinct(found)
+            now = earlier if attribute in self.unconfirmed else (getattr(self, attribute),)
+            if len(values) != len(now) or len(distinct(list(now) + list(values))) != len(now):
+                return False
+        return True
+
+    def _doubt(self, name: str, saved: Any) -> None:
+        """The answer ``name`` moved fields from their values in ``saved``: it may have been a second
+        copy of an earlier answer, so each stays unconfirmed between where it was and where it is
+        now (where the belief was unconfirmed already, it kept where it was) until its driver
+        reports; the components are ``doubted``, for the node to ask their drivers at once."""
+        fields: Dict[str, Optional[Tuple[Any, ...]]] = {}
+        components = []
+        for place, attribute in self.TRACKED:
+            new, old = getattr(self, attribute), saved[place]
+            if new is old or not moved(new, old):
+                continue
+            component = self.COMPONENT_OF[attribute]
+            if component not in components:
+                components.append(component)
+            if not isinstance(old, Unknown) and not isinstance(new, Unknown):
+                fields[attribute] = (old, new)
+        why = "%s may be a second copy of an earlier answer: its driver is asked" % (name,)
+        self.unconfirm(fields, why)
+        for component in components:
+            self.why[component] = why
+            if component not in self.doubted:
+                self.doubted.append(component)

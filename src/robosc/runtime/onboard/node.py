@@ -142,6 +142,13 @@ PARAMETERS = (
         1e9,
     ),
     Parameter(
+        "confirm_answers",
+        True,
+        "an answer a robot publishes (arrived, door_opened) may be a second copy of an earlier one: its "
+        "component may be where it was or where the answer leads until its driver reports (false: take "
+        "answers as they come, for drivers that send each answer once and offer no report)",
+    ),
+    Parameter(
         "clock_skew",
         0.0,
         "seconds a robot's clock may be behind this node's, when an answer's stamp is compared with the command "
@@ -228,17 +235,18 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         self.supervisor.send = self.send  # type: ignore[method-assign]  # what the supervisor sends goes out here
         self.supervisor.watching = True
         self.supervisor.skew = self.params["clock_skew"]
+        self.supervisor.confirm_answers = self.params["confirm_answers"]
         self.delivery = Delivery(self)
         self.supervisor.answered = self.delivery.arrived
         self.reported: Optional[Dict[str, Any]] = None  # the health last published
         self.health_seen: Any = None  # (supervisor.health_changes, commands on their way) when last looked
         self.report_clients: Dict[str, Any] = {}  # component -> the adapter's client of its report service
         self.asked: Dict[str, float] = {}  # component -> when its driver was last asked for its state
-        # component -> how many events had changed it when its driver was last asked
-        # (supervisor.changes): a report asked for before one may tell where it was before it
-        self.asked_after: Dict[str, int] = {}
-        # component -> when (this wall clock) its driver was first asked since its last report came:
-        # an answer stamped later may not be in the report, and is taken as new
+        # component -> its requests not answered yet, oldest first: (when, on this wall clock, it
+        # was asked; how many events had changed it then, supervisor.changes): a report asked for
+        # before one may tell where it was before it; an answer stamped later may not be in it
+        self.requests: Dict[str, List[Tuple[float, int]]] = {}
+        # component -> when its oldest request not answered yet was made
         self.asked_since: Dict[str, float] = self.supervisor.asking  # it counts changes while any
         self.stamps: Dict[str, float] = {}  # topic -> the source stamp of the last message taken from it
         if self.supervisor.unconfirmed:
@@ -415,6 +423,8 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
                 else:
                     for name, communication in topic.takes:
                         supervisor.deliver(name, received(communication, message), True, stamp)
+                if supervisor.doubted:
+                    self.ask_again(supervisor.doubted)
                 self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)

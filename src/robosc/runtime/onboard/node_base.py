@@ -75,8 +75,10 @@ class NodeBase(object):
     beat: float  # when the last heartbeat went out on live_view/events
     report_clients: Dict[str, Any]  # component -> the adapter's client of its report service
     asked: Dict[str, float]  # component -> when its driver was last asked for its state
-    asked_after: Dict[str, int]  # component -> how many events had changed it when its driver was last asked
-    asked_since: Dict[str, float]  # component -> when its driver was first asked since its last report came
+    # component -> its report requests not answered yet, oldest first: (when it was asked, how many
+    # events had changed it then); a driver answers its requests in order
+    requests: Dict[str, List[Tuple[float, int]]]
+    asked_since: Dict[str, float]  # component -> when its oldest request not answered yet was made
     refused: Optional[str]  # why send() refused the command being forwarded, if it did
     blocked_count: int
     forwarded_count: int

@@ -7,10 +7,12 @@ component that waited too long for an answer the model expects is unconfirmed.""
 from __future__ import absolute_import, annotations
 
 import time
+from typing import List
 
 from .node_base import NodeBase
 
 REPORT_PREFIX = "robosc/report/"  # + a component's name: the std_srvs/Trigger service its driver offers
+MAX_REQUESTS = 100  # report requests of one component out at once, at most
 
 
 class NodeReports(NodeBase):
@@ -27,34 +29,72 @@ class NodeReports(NodeBase):
             if now - self.asked.get(component, -1e18) < self.params["report_interval"]:
                 continue
             client = self.report_clients.get(component)
-            if client is not None:
-                try:
-                    if component not in self.asked_since:  # the first request of a round
-                        self.asked_since[component] = time.time()
-                        self.asked_after[component] = self.supervisor.changes.get(component, 0)
-                    if self.ask_report(component, client):
-                        self.asked[component] = now
-                except Exception as error:
-                    self.asked[component] = now
-                    self.warnings("cannot ask %s for its state: %s" % (component, error), "ask " + component)
+            if client is None:
+                continue
+            queue = self.requests.setdefault(component, [])
+            if len(queue) >= MAX_REQUESTS:  # a driver that answers none: no more until it does
+                continue
+            request = (time.time(), self.supervisor.changes.get(component, 0))
+            queue.append(request)
+            self.asked_since[component] = queue[0][0]
+            try:
+                sent = self.ask_report(component, client)
+            except Exception as error:
+                sent = False
+                self.asked[component] = now
+                self.warnings("cannot ask %s for its state: %s" % (component, error), "ask " + component)
+            if sent:
+                self.asked[component] = now
+            elif request in queue:  # it did not go out
+                queue.remove(request)
+                self._answered(component)
+
+    def _answered(self, component: str) -> None:
+        """A request of ``component`` is answered or did not go out: the oldest still out, if any."""
+        queue = self.requests.get(component)
+        if queue:
+            self.asked_since[component] = queue[0][0]
+        else:
+            self.requests.pop(component, None)
+            self.asked_since.pop(component, None)
+
+    def not_answered(self, component: str) -> None:
+        """The oldest report request of ``component`` out will not be answered (it failed, or the
+        adapter gave up on it)."""
+        queue = self.requests.get(component)
+        if queue:
+            queue.pop(0)
+        self._answered(component)
+
+    def ask_again(self, components: List[str]) -> None:
+        """Ask the drivers of ``components`` (an answer left them unconfirmed) at once, not at the
+        next ``report_interval``; what a request already out tells may be from before the answer,
+        so it is not taken (``report``)."""
+        for component in components:
+            self.asked.pop(component, None)
+        del components[:]
+        self.ask_reports(time.time())
 
     def report(self, component: str, success: bool, message: str) -> None:
-        """A driver's answer to a report request (``success`` False: it could not tell)."""
-        since = self.asked_since.pop(component, None)  # the round of requests ends
-        after = self.asked_after.pop(component, None)
+        """A driver's answer to its oldest report request not answered yet (``success`` False: it
+        could not tell)."""
+        queue = self.requests.get(component)
+        request = queue.pop(0) if queue else None
+        self._answered(component)
         if component not in self.supervisor.unsure():
             return
         if not success:
             self.warnings("%s could not report its state: %s" % (component, message), "report " + component)
             return
-        if since is None or self.supervisor.changes.get(component, 0) != after:
-            # asked for before a command to it went out or an answer moved it (or an answer to an
-            # earlier round): its driver may have answered before that; asked again (once no
+        if request is None or self.supervisor.changes.get(component, 0) != request[1]:
+            # asked for before a command to it went out or an answer moved it (or a request given
+            # up on): its driver may have answered before that; asked again at once (once no
             # command is on its way: ask_reports)
             self.asked.pop(component, None)
             self.log("info", "report of %s not taken: it changed since it was asked (a command or an answer)" % (component,))
+            self.ask_reports(time.time())
             return
-        why = self.supervisor.confirm(component, message, since)
+        why = self.supervisor.confirm(component, message, request[0])
         if why is None:
             self.log("info", "%s confirmed by its driver: %s" % (component, message))
         else:

@@ -231,6 +231,7 @@ class SupervisorNode(NodeCore):
                 "%s's driver has not answered its report request for %.1f s: asked again" % (component, now - since),
                 "report " + component,
             )
+            self.not_answered(component)  # its answer, should it come, is not taken
         self.asking[component] = now
 
         def ask() -> None:
@@ -245,6 +246,7 @@ class SupervisorNode(NodeCore):
                     return  # given up on: a later request is out
                 del self.asking[component]
                 if response is None:
+                    self.not_answered(component)
                     self.asked.pop(component, None)  # not asked: the next look tries again
                 else:
                     self.report(component, bool(response.success), str(response.message))

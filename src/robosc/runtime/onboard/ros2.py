@@ -233,6 +233,7 @@ class SupervisorNode(Node, NodeCore):
         try:
             response = future.result()
         except Exception as error:
+            self.not_answered(component)
             self.warnings("%s could not report: %s" % (component, error), "report " + component)
             return
         if response is not None:

@@ -174,6 +174,7 @@ class Tables(object):
     # only events some component answers in some locations but not in all
     ANSWERS: ClassVar[Dict[str, Tuple[Tuple[str, Tuple[str, ...]], ...]]] = {}
     ALWAYS: ClassVar[Tuple[str, ...]] = ()  # uncontrollable events the plant takes in every state
+    REPLIES: ClassVar[Tuple[str, ...]] = ()  # ANSWERS taken where a command leads: answers to commands
     STILL: ClassVar[Tuple[str, ...]] = ()  # controllable events whose effect changes no field
     # indexes of the tables above, made by prepare()
     EVENT: ClassVar[Dict[str, Event]]
@@ -194,6 +195,9 @@ class Tables(object):
     ANSWERED: ClassVar[Tuple[Tuple[int, str], ...]]  # (place, field) of the fields ANSWERS names
     GETTER: ClassVar[Callable[[Any], Any]]  # every field's value at once (C speed)
     FREE: ClassVar[FrozenSet[str]]  # ALWAYS but those ANSWERS names: always taken, without a look
+    # the answers to commands a robot publishes (REPLIES' messages; not a service's or action's
+    # response, which the middleware pairs with its request): a second copy cannot be told apart
+    REPEATABLE: ClassVar[FrozenSet[str]]
     STILL_METHODS: ClassVar[FrozenSet[str]]  # the methods of STILL: performed without noting what changed
 
     # set by the supervisor's __init__
@@ -226,6 +230,7 @@ class Tables(object):
         answered = set(field for answers in cls.ANSWERS.values() for field, _ in answers)
         cls.ANSWERED = tuple((cls.INDEX[f], f) for f in cls.ATTRIBUTES if f in answered)
         cls.FREE = frozenset(cls.ALWAYS).difference(cls.ANSWERS)
+        cls.REPEATABLE = frozenset(name for name in cls.REPLIES if cls.EVENT[name].kind == "message")
         cls.STILL_METHODS = frozenset(e.method for e in cls.EVENTS if e.name in cls.STILL)
         cls.COMPONENT_OF = {}
         cls.COMPONENTS = {}
