@@ -32,6 +32,7 @@ def depends(package: Path) -> set[str]:
 RUNTIME = {
     "__init__.py",
     "answers.py",
+    "claims.py",
     "belief.py",
     "delivery.py",
     "effects.py",

@@ -22,6 +22,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from robosc.runtime.onboard.claims import CLAIM_TIMEOUT
 from ros_support import ROS1_PYTHON, Ros1, Ros2, build_package, logged_events, wait_until
 from warehouse_drivers import (
     DRIVER_ROS1,
@@ -227,6 +228,52 @@ def test_ros2_an_answer_sent_again_later_never_moves_a_robot(ros2: Ros2, tmp_pat
     assert "Traceback" not in ros2.processes.output()
 
 
+def decided(log: Path) -> list[dict[str, Any]]:
+    return [r for r in logged_events(log) if r.get("controllable")] if log.exists() else []
+
+
+def test_ros2_a_second_coordinator_holds_until_the_first_is_gone(ros2: Ros2, tmp_path: Path) -> None:
+    """The same command line twice (a launch file run twice, a respawn while the old process
+    lives; issue 47: both commanded, 211 forbidden commands in 60 s). The second hears the first's
+    claim and holds every command, saying why on health and in its log; when the first is killed,
+    the second commands within CLAIM_TIMEOUT and a little, its belief unconfirmed (it asks the
+    drivers). Nothing forbidden is sent."""
+    from std_msgs.msg import String
+
+    package = build_package(MODEL, 2, "controller", tmp_path)
+    module = next(p.name for p in package.iterdir() if (p / "node.py").exists())
+    world = World(delay=0.2)
+    wire = Ros2Wire(ros2.node, ros2.executor, world)
+    health = ros2.record(String, "/health")
+    logs = [tmp_path / "first.jsonl", tmp_path / "second.jsonl"]
+
+    def start(name: str, log: Path) -> subprocess.Popen[bytes]:
+        params = [f"event_log:={log}", *(f"{k}:={v}" for k, v in PARAMS.items())]
+        command = [sys.executable, "-m", f"{module}.node", "--ros-args", *(x for p in params for x in ("-p", p))]
+        return ros2.processes.start(name, command, {**ros2.env, "PYTHONPATH": str(package)})
+
+    first = start("first", logs[0])
+    assert wire.run(60, lambda: sum(gos(world).values()) >= 5), ros2.processes.output()[-3000:]
+    start("second", logs[1])
+    standby = lambda: any((json.loads(h.data).get("coordinator") or {}).get("standby") for h in health)  # noqa: E731
+    assert wire.run(30, standby), ros2.processes.output()[-3000:]
+    before = sum(gos(world).values())
+    assert wire.run(60, lambda: sum(gos(world).values()) >= before + 10)  # the first goes on
+    assert decided(logs[1]) == []
+    assert "holding every command: another controller commands" in (tmp_path / "second.log").read_text()
+    first.kill()
+    killed_at = time.time()
+    assert wire.run(30, lambda: bool(decided(logs[1]))), ros2.processes.output()[-3000:]
+    took = decided(logs[1])[0]["time"] - killed_at
+    assert took < CLAIM_TIMEOUT + 3.0, took  # gone after CLAIM_TIMEOUT; then the drivers' reports
+    after = sum(gos(world).values())
+    assert wire.run(60, lambda: sum(gos(world).values()) >= after + 10)
+    records = sorted(decided(logs[0]) + decided(logs[1]), key=lambda r: r["time"])
+    found, checked = forbidden(records, world.received, world.sent)
+    assert checked > 20 and found == [], found
+    assert "confirmed by its driver" in (tmp_path / "second.log").read_text()
+
+
 # ---- ROS 1 ---------------------------------------------------------------------------------------
 def ros1_world(tmp_path: Path, robots: tuple[str, ...], twice: bool, again: Any = 0.0) -> str:
     return ROS1_WORLD.format(tests=str(Path(__file__).parent), robots=robots, twice=twice, again=again,
@@ -335,3 +382,62 @@ with lock:
     found, checked = forbidden(logged_events(log), result["received"], result["sent"])
     assert checked > 10 and found == [], found
     assert "Traceback" not in ros1.processes.output()
+
+
+def test_ros1_a_second_coordinator_with_the_same_name_replaces_the_first(ros1: Ros1, tmp_path: Path) -> None:
+    """On ROS 1 the master lets one node have a name: the same command line again shuts the first
+    down (issue 47: both ended, no coordinator at all: the first, shutting down, logged through
+    rospy, which asked the master for a parameter in its name, and the master shut the second
+    down in turn). The first ends cleanly; the second commands, having asked the drivers where
+    the robots are. A third under another name (``__name:=spare``) hears the second's claim and
+    holds; the second killed, the third takes over. Nothing forbidden is sent."""
+    package = build_package(MODEL, 1, "controller", tmp_path)
+    script = str(next((package / "scripts").glob("*_node")))
+    logs = [tmp_path / f"{name}.jsonl" for name in ("first", "second", "spare")]
+    params = [f"_{k}:={v}" for k, v in PARAMS.items()]
+    moved, killed = tmp_path / "moved", tmp_path / "killed"
+    body = ros1_world(tmp_path, ROBOTS, False) + f"""
+for _ in range(2):  # each coordinator after the first: the robots moved on (then the test goes on)
+    before = sum(gos().values())
+    assert run(90, lambda: sum(gos().values()) >= before + 5), gos()
+    open({str(moved)!r}, "a").write("moved\\n")
+    assert run(90, lambda: os.path.exists({str(killed)!r})), "not killed"
+before = sum(gos().values())
+assert run(90, lambda: sum(gos().values()) >= before + 10), gos()
+with lock:
+    done(json.loads(world.dump()))
+"""
+
+    def start(name: str, *remaps: str) -> subprocess.Popen[bytes]:
+        log = tmp_path / f"{name}.jsonl"
+        return ros1.processes.start(name, [ROS1_PYTHON, script, *remaps, *params, f"_event_log:={log}"], ros1.env)
+
+    def moves(times: int) -> None:
+        assert wait_until(lambda: moved.exists() and moved.read_text().count("moved") >= times, 120, 0.05), (
+            ros1.processes.output()[-3000:]
+        )
+
+    first = start("first")
+    result: dict[str, Any] = {}
+    client = threading.Thread(target=lambda: result.update(ros1.client(body, timeout=300)))
+    client.start()
+    moves(1)
+    second = start("second")
+    assert first.wait(20) == 0, ros1.processes.output()[-3000:]
+    said = (tmp_path / "first.log").read_text()
+    assert "new node registered with same name" in said and "Traceback" not in said, said[-3000:]
+    start("spare", "__name:=spare")
+    assert wait_until(lambda: "holding every command: another controller commands" in (tmp_path / "spare.log").read_text(), 30, 0.05)
+    time.sleep(1.0)
+    assert second.poll() is None and not decided(logs[2]), ros1.processes.output()[-3000:]
+    killed.write_text("")  # the robots move on under the second
+    moves(2)
+    second.kill()
+    killed_at = time.time()
+    client.join(300)
+    assert "received" in result, ros1.processes.output()[-3000:]
+    took = [r["time"] for r in decided(logs[2])]
+    assert took and took[0] - killed_at < CLAIM_TIMEOUT + 3.0, (took[:1], killed_at)
+    records = sorted(decided(logs[0]) + decided(logs[1]) + decided(logs[2]), key=lambda r: r["time"])
+    found, checked = forbidden(records, result["received"], result["sent"])
+    assert checked > 20 and found == [], found

@@ -314,6 +314,49 @@ def test_event_log_rotates_at_its_size(tmp_path: Path) -> None:
     assert unbounded.rotations == 0
 
 
+class Failing:
+    """A file whose writes fail while ``full``, the first failing write torn half-way."""
+
+    def __init__(self, handle: Any) -> None:
+        self.handle, self.full, self.tore, self.closed = handle, False, False, False
+
+    def write(self, data: bytes) -> int:
+        if self.full:
+            if not self.tore:
+                self.tore = True
+                self.handle.write(data[: len(data) // 2])
+            raise OSError(28, "No space left on device")
+        return int(self.handle.write(data))
+
+    def tell(self) -> int:
+        return int(self.handle.tell())
+
+    def close(self) -> None:
+        self.handle.close()
+        raise OSError(28, "No space left on device")
+
+
+def test_an_event_log_that_cannot_be_written_says_so_once_and_goes_on_when_it_can(tmp_path: Path) -> None:
+    """A full disk (issue 47): each record is one unbuffered write; a failing one is said once and
+    lost, the line it tore ended; when records are written again that is said, with how many
+    were lost; closing never fails."""
+    said: list[str] = []
+    path = tmp_path / "events.jsonl"
+    log = EventLog(str(path), 0, said.append)
+    log({"event": "a"})
+    log.handle = failing = Failing(log.handle)  # type: ignore[assignment]
+    failing.full = True
+    for name in "bcd":
+        log({"event": name})
+    assert said == [f"cannot write the event log {path} (OSError: [Errno 28] No space left on device): events are not logged until it can be"]
+    failing.full = False
+    log({"event": "e"})
+    assert said[1:] == [f"the event log {path} is written again (3 events were not)"]
+    log.close()
+    lines = path.read_text().splitlines()
+    assert [json.loads(line)["event"] for line in (lines[0], lines[2])] == ["a", "e"] and len(lines) == 3
+
+
 def test_view_topics_carry_events_only_while_someone_listens() -> None:
     node = FakeNode("examples/maze_solver.rscd", "controller", tick_on_message=True)
     listeners = [0]

@@ -20,6 +20,7 @@ import sys
 import time
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
+from .claims import NodeClaims
 from .delivery import Delivery
 from .layer import BLOCKED_TOPIC, SupervisionLayer
 from .messages import Unsendable, fill, received
@@ -193,7 +194,7 @@ def controller_side(name: str) -> str:
     return CONTROLLER_PREFIX + "/" + name
 
 
-class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
+class NodeCore(NodeView, NodeReports, NodeTasks, NodeClaims, SupervisionLayer):
     """The node's work, middleware aside. An adapter calls :meth:`setup`, creates what
     :attr:`inputs`, :attr:`outputs`, :attr:`service_calls` and :attr:`action_calls` need,
     and implements ``publish``, ``publish_text``, ``call_service``, ``start_goal`` and
@@ -263,7 +264,7 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         if path:
             why = writable(path)
             if why is None:
-                self.event_log = EventLog(path, self.params["event_log_max_bytes"])
+                self.event_log = EventLog(path, self.params["event_log_max_bytes"], lambda text: log("error", text))
                 self.sinks.append(self.event_log)
             else:
                 log("error", "parameter refused: event_log %r cannot be written (%s); no event log" % (path, why))
@@ -274,6 +275,8 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         self.still = frozenset(robot_class.STILL)
         self._plan_routes(robot_class)
         self.start_tasks(robot_class, self.params["policy"], lambda: self.clock())
+        if mode == "controller":  # one controller commands (claims.py)
+            self.start_claims()
 
     # ---- after each callback and cycle -------------------------------------------------------
     def checkpoint(self) -> None:
@@ -312,6 +315,9 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         waiting = self.delivery.waiting()
         health["unconfirmed"] = dict((c, v) for c, v in health["unconfirmed"].items() if c not in waiting)
         health["in_flight"] = len(self.delivery.pending)
+        claims = self.claim_health()
+        if claims is not None:
+            health["coordinator"] = claims
         return health
 
     def _plan_routes(self, robot_class: Any) -> None:
@@ -363,6 +369,7 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         """The commands on their way, the answers overdue, the reports to ask for: every cycle, and
         at least every HOUSEKEEPING seconds (the adapters add a timer where ``rate`` is slower)."""
         now = time.time()
+        self.claims_cycle()
         self.delivery.follow()
         self.overdue(now)
         if self.supervisor.unconfirmed:
@@ -377,7 +384,7 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
         """The timer: housekeeping, a controller's tick, then the state if asked for."""
         self.cycles += 1
         self.housekeep()
-        if self.mode == "controller":
+        if self.mode == "controller" and self.commanding:  # (else another controller commands)
             try:
                 self.supervisor.tick()
             except Exception as error:  # keep the node alive; the state is unchanged
@@ -402,7 +409,7 @@ class NodeCore(NodeView, NodeReports, NodeTasks, SupervisionLayer):
     def after_message(self) -> None:
         if self.mode == "supervisor":
             self.supervisor.settle()
-        elif self.params["tick_on_message"]:
+        elif self.params["tick_on_message"] and self.commanding:
             self.supervisor.tick()
 
     def publish_state(self) -> None:

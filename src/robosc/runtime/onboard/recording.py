@@ -4,6 +4,7 @@ and any other sink (the live view), each record with its time, data and the stat
 
 from __future__ import absolute_import, annotations
 
+import contextlib
 import json
 import os
 import time
@@ -98,32 +99,60 @@ class Recorder(object):
 class EventLog(object):
     """Appends records to ``path`` as JSON lines. When the file would pass ``max_bytes``
     (0: no bound), it is renamed to ``path.1`` (replacing an older one) and a new file is
-    started, so the log never takes more than about twice ``max_bytes``."""
+    started, so the log never takes more than about twice ``max_bytes``.
 
-    def __init__(self, path: str, max_bytes: int = 0) -> None:
+    Each line goes to the file in one unbuffered write. A write that fails (a full disk, a
+    folder gone read-only) is said once through ``warn`` and the record is lost; the records
+    after it are tried, and when one is written again that is said too, with how many were lost
+    (a line torn by the failure is ended first). Closing never fails."""
+
+    def __init__(self, path: str, max_bytes: int = 0, warn: Optional[Callable[[str], Any]] = None) -> None:
         self.path = path
         self.max_bytes = max_bytes
-        self.handle = open(path, "a")  # noqa: SIM115 (kept open, closed by close())
+        self.warn = warn
+        self.handle = open(path, "ab", buffering=0)  # noqa: SIM115 (kept open, closed by close())
         self.size = self.handle.tell()
         self.rotations = 0
+        self.lost = 0  # records not written since the last one that was
+        self.torn = False  # the last write may have left part of a line
 
     def __call__(self, record: dict[str, Any]) -> None:
-        line = json.dumps(record, sort_keys=True) + "\n"
-        if self.max_bytes and self.size + len(line) > self.max_bytes and self.size > 0:
-            self.rotate()
-        self.handle.write(line)
-        self.handle.flush()
-        self.size += len(line)
+        line = (json.dumps(record, sort_keys=True) + "\n").encode("utf-8")
+        try:
+            if self.handle.closed:  # a rotation that failed half-way
+                self.handle = open(self.path, "ab", buffering=0)  # noqa: SIM115 (kept open)
+                self.size = self.handle.tell()
+            if self.max_bytes and self.size + len(line) > self.max_bytes and self.size > 0:
+                self.rotate()
+            if self.torn:
+                self.size += self.handle.write(b"\n") or 0
+                self.torn = False
+            written = self.handle.write(line) or 0
+            self.size += written
+            if written < len(line):
+                raise OSError("only %d of %d bytes written" % (written, len(line)))
+        except (OSError, ValueError) as error:
+            self.torn = True
+            self.lost += 1
+            if self.lost == 1 and self.warn is not None:
+                self.warn("cannot write the event log %s (%s: %s): events are not logged until it can be"
+                          % (self.path, type(error).__name__, error))
+            return
+        if self.lost:
+            if self.warn is not None:
+                self.warn("the event log %s is written again (%d events were not)" % (self.path, self.lost))
+            self.lost = 0
 
     def rotate(self) -> None:
         self.handle.close()
         os.replace(self.path, self.path + ".1")
-        self.handle = open(self.path, "a")  # noqa: SIM115 (kept open)
+        self.handle = open(self.path, "ab", buffering=0)  # noqa: SIM115 (kept open)
         self.size = 0
         self.rotations += 1
 
     def close(self) -> None:
-        self.handle.close()
+        with contextlib.suppress(OSError):  # unbuffered: nothing is lost
+            self.handle.close()
 
 
 def writable(path: str) -> Optional[str]:

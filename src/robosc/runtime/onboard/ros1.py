@@ -16,13 +16,15 @@ private (``~rate``, ...) and checked: a bad value is refused with a log line.
 
 from __future__ import absolute_import, annotations, print_function
 
+import logging
 import sys
 import threading
 import time
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, List, Optional
 
 import rospy
 
+from .claims import CLAIM_TOPIC
 from .messages import MissingType, load
 from .node import (
     BLOCKED_TOPIC,
@@ -86,6 +88,12 @@ class Goal(object):
 
 
 def _log(level: str, message: str) -> None:
+    if rospy.core.is_shutdown_requested():
+        # shutting down, maybe for a node of the same name the master has taken instead: rospy's
+        # logger would ask the master for a parameter as this node, and the master would shut the
+        # other node down in turn; said on standard error instead
+        print("[robosc] %s: %s" % (level, message), file=sys.stderr)
+        return
     {"error": rospy.logerr, "warning": rospy.logwarn}.get(level, rospy.loginfo)(message)
 
 
@@ -103,9 +111,32 @@ class Matching(rospy.SubscribeListener):  # type: ignore[misc]
         self.topic.matched = int(num_peers)
 
 
+def quiet_log_files() -> None:
+    """rospy's log files (``ROS_HOME``/``ROS_LOG_DIR``) on a full disk: Python's logging would print
+    a traceback for every line that cannot be written, and at the end; said once instead."""
+    said: List[bool] = []  # once said, not again
+
+    def failed(record: Any) -> None:
+        if not said:
+            said.append(True)
+            error = sys.exc_info()[1]
+            print("[robosc] cannot write ROS's log file (%s: %s): log lines go to the console only"
+                  % (type(error).__name__, error), file=sys.stderr)
+
+    loggers = [logging.getLogger()] + [
+        logger for logger in logging.Logger.manager.loggerDict.values() if isinstance(logger, logging.Logger)
+    ]
+    for logger in loggers:
+        for handler in logger.handlers:
+            if isinstance(handler, logging.FileHandler):
+                handler.handleError = failed  # type: ignore[method-assign]
+
+
 class SupervisorNode(NodeCore):
     def __init__(self, robot_class: Any, mode: str = "controller", node_name: Optional[str] = None) -> None:
+        logging.raiseExceptions = False  # (rospy logs while it starts, before its handlers can be told)
         rospy.init_node(node_name or default_name(robot_class))
+        quiet_log_files()
         given = {}
         for p in PARAMETERS:
             try:
@@ -163,7 +194,11 @@ class SupervisorNode(NodeCore):
             self.report_clients[component] = rospy.ServiceProxy(REPORT_PREFIX + component, self.trigger)
         if self.dispatcher is not None:  # a fleet's coordinator: tasks at run time (node_tasks.py)
             self.text_publishers[TASKS_TOPIC] = rospy.Publisher(TASKS_TOPIC, self.text_type, queue_size=10, latch=True)
+        if self.claim is not None:  # one controller commands (claims.py)
+            self.text_publishers[CLAIM_TOPIC] = rospy.Publisher(CLAIM_TOPIC, self.text_type, queue_size=10)
         # subscriptions and servers last: their callbacks need everything above
+        if self.claim is not None:
+            rospy.Subscriber(CLAIM_TOPIC, self.text_type, self.locked(self.claim_heard), queue_size=10)
         if self.dispatcher is not None:
             rospy.Subscriber(TASK_TOPIC, self.text_type, self.locked(self.task_given), queue_size=TASK_DEPTH)
             rospy.Service(QUEUE_SERVICE, self.trigger, self.locked(self.serve_queue_ros1))

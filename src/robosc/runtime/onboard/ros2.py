@@ -39,6 +39,7 @@ from rclpy.qos_overriding_options import QoSOverridingOptions
 from rclpy.utilities import ok, try_shutdown
 
 from . import profiles
+from .claims import CLAIM_TOPIC
 from .messages import SENSOR_PACKAGE, MissingType, load
 from .node import (
     BLOCKED_TOPIC,
@@ -150,6 +151,10 @@ class SupervisorNode(Node, NodeCore):
             self.create_subscription(topic.type, topic.name, self.stamped(topic), qos, qos_overriding_options=overrides)
         trigger = load("std_srvs", "srv", "Trigger")
         self.trigger_request = trigger.Request
+        if self.claim is not None:  # one controller commands (claims.py)
+            claims = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+            self.text_publishers[CLAIM_TOPIC] = self.create_publisher(self.text_type, CLAIM_TOPIC, claims)
+            self.create_subscription(self.text_type, CLAIM_TOPIC, self.callback(self.claim_heard), claims)
         if self.dispatcher is not None:  # a fleet's coordinator: tasks at run time (node_tasks.py)
             self.text_publishers[TASKS_TOPIC] = self.create_publisher(self.text_type, TASKS_TOPIC, latched)
             tasks = QoSProfile(depth=TASK_DEPTH, reliability=ReliabilityPolicy.RELIABLE)  # none lost in a burst
@@ -462,6 +467,35 @@ class SupervisorNode(Node, NodeCore):
         return True
 
 
+def describe(error: BaseException) -> str:
+    return "%s: %s" % (type(error).__name__, error)
+
+
+def start(arguments: List[str]) -> None:
+    """``rclpy.init``; where ROS cannot write its log files (``ROS_HOME`` or ``ROS_LOG_DIR`` read-only
+    or full), said once, and started again logging to the console only."""
+    try:
+        rclpy.init(args=arguments)
+    except Exception as error:
+        if "logging" not in str(error):
+            raise
+        print(
+            "[robosc] ROS cannot write its log files (%s): the node logs to the console only (set ROS_LOG_DIR "
+            "to a folder it may write)" % (describe(error),),
+            file=sys.stderr,
+        )
+        try_shutdown()
+        rclpy.init(args=[*arguments, "--ros-args", "--disable-external-lib-logs"])
+        return
+    folder = os.environ.get("ROS_LOG_DIR") or os.path.join(
+        os.environ.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros"), "log"
+    )
+    with contextlib.suppress(OSError):  # ROS's logger says nothing when its file cannot grow
+        if os.statvfs(folder).f_bavail == 0:
+            print("[robosc] the disk of ROS's log files (%s) is full: log lines go to the console only" % folder,
+                  file=sys.stderr)
+
+
 def main(
     robot_class: Any, mode: str = "controller", args: Optional[List[str]] = None, node_name: Optional[str] = None
 ) -> int:
@@ -476,14 +510,14 @@ def main(
         except OSError as error:  # no temporary file: the profile as it comes, for every writer
             print("[robosc] %s: every command topic gets the 10 ms heartbeat" % (error,), file=sys.stderr)
             os.environ["FASTRTPS_DEFAULT_PROFILES_FILE"] = os.path.join(os.path.dirname(__file__), profiles.DEFAULT)
-    rclpy.init(args=arguments)
     try:
+        start(arguments)
         node = SupervisorNode(robot_class, mode, node_name)
-    except MissingType as error:
-        print("[robosc] %s" % (error,), file=sys.stderr)
+    except Exception as error:  # a message type missing, or ROS itself cannot start: said, no traceback
+        print("[robosc] cannot start: %s" % (error if isinstance(error, MissingType) else describe(error)), file=sys.stderr)
         try_shutdown()
         return 1
-    finally:  # Fast DDS has read it when the node's participant was made
+    finally:  # Fast DDS has read it when the node's participant was made (or will not)
         if written is not None:
             with contextlib.suppress(OSError):
                 os.remove(written)
