@@ -44,6 +44,7 @@ RUNTIME = {
     "node.py",
     "node_base.py",
     "node_tasks.py",
+    "outcomes.py",
     "profiles.py",
     "reading.py",
     "recording.py",

@@ -13,6 +13,7 @@ import pytest
 
 from robosc.api import load_model, plan_supervisor, synthesize_model
 from robosc.debug.simulator import load_module
+from robosc.runtime.onboard.claims import CLAIM_WAIT
 from robosc.runtime.onboard.messages import Unsendable, conforms, fill, wire_type
 from robosc.runtime.onboard.node import PARAMETERS, NodeCore, controller_side
 from robosc.runtime.onboard.recording import EventLog
@@ -75,6 +76,9 @@ class FakeNode(NodeCore):
         self.logs: list[tuple[str, str]] = []
         module = load_module(plan_supervisor(synthesize_model(load_model(ROOT / model))))
         self.setup(module.Robot, mode, params, lambda level, text: self.logs.append((level, text)))
+        if self.claim is not None:  # a fake graph: no other controller to listen for (test_claims.py)
+            self.listening_since -= CLAIM_WAIT
+            self.decide()
         self.warnings.interval = 0.0  # every warning, for the tests
         for topic in list(self.inputs.values()) + list(self.outputs.values()):
             topic.type = {"Twist": Twist, "Int16": Int16, "Float32": Float32}.get(topic.type_name, Data)

@@ -16,6 +16,9 @@ rules ``enum<N>_<Enum>``.
 
 from __future__ import annotations
 
+from typing import Any
+
+from robosc.codegen.outcomes import Branch, forked, landing
 from robosc.codegen.pyexpr import Identifiers, Names, conjunction, constant, python, step_path
 from robosc.codegen.routes import Driver, Route, Shape, drivers, routes
 from robosc.language import model as m
@@ -55,7 +58,7 @@ class Part:
     """What one automaton does on one event, and where it can."""
 
     lines: list[str]
-    moves: list[tuple[str, str | None, str]] | None
+    moves: list[tuple[str, str | None, Any]] | None
     gates: list[str]
 
 
@@ -87,7 +90,8 @@ class EventPlan:
     plant: str  # the plant part of ``enabled``
     supervisor: str  # the supervisor part (required and added)
     effect: tuple[str, ...]  # Python lines (indented relative to the method body)
-    moves: tuple[tuple[str, str | None, str], ...] | None  # the effect as location changes only, if it is
+    moves: tuple[tuple[str, str | None, Any], ...] | None  # the effect as location changes only, if it is (a
+    # tuple target: its outcomes)
     communication: Communication | None = None
     convert: str | None = None  # Python: (rules function, enum name, default) for enum data
     data: str | None = None  # constant data: Python expression for it; computed data: the method computing it
@@ -208,7 +212,8 @@ class Plan:
             if e.moves is None:
                 every = True
             else:
-                entered.update((field, target) for field, _, target in e.moves)
+                for field, _, target in e.moves:
+                    entered.update((field, t) for t in (target if isinstance(target, tuple) else (target,)))
         return tuple(
             e.name
             for e in self.uncontrollable
@@ -423,24 +428,18 @@ class _Planner:
         return [f"{call}(", *(f"{INDENT}{item}," for item in items), ")"]
 
     @staticmethod
-    def branch_lines(
-        field: str, branches: list[tuple[str | None, str, str | None, list[str]]], gated: bool
-    ) -> list[str]:
+    def branch_lines(field: str, branches: list[Branch], gated: bool) -> list[str]:
         """if / elif over an automaton's ways to take part in an event: (source, guard,
         target, assignment lines). Unconditional where there is one way and the event's
         condition already requires it (``gated``), or it is taken from every state."""
         lines: list[str] = []
         first = True
-        bodies = [
-            [*assigns, *([f"self.{field} = {target!r}"] if target is not None and target != source else [])]
-            for source, _, target, assigns in branches
-        ]
+        branches = forked(branches)
+        bodies = [[*assigns, *landing(field, source, target)] for source, _, target, assigns in branches]
         if gated and bodies and all(body == bodies[0] for body in bodies):
             return bodies[0]  # every way the event can happen here does the same
         for source, guard, target, assigns in branches:
-            body = list(assigns)
-            if target is not None and target != source:
-                body.append(f"self.{field} = {target!r}")
+            body = [*assigns, *landing(field, source, target)]
             if not body:
                 continue
             test = conjunction(["True" if source is None else f"self.{field} == {source!r}", guard])
@@ -455,17 +454,19 @@ class _Planner:
         return lines
 
     @staticmethod
-    def branch_moves(
-        field: str, branches: list[tuple[str | None, str, str | None, list[str]]], gated: bool
-    ) -> list[tuple[str, str | None, str]] | None:
+    def branch_moves(field: str, branches: list[Branch], gated: bool) -> list[tuple[str, str | None, Any]] | None:
         """The same as :meth:`branch_lines` as data, (field, source or None, target) tried in
         order, the first that applies for a field wins; None when a branch assigns or tests a
         guard (then it needs code)."""
-        moves: list[tuple[str, str | None, str]] = []
-        changes = branches
+        moves: list[tuple[str, str | None, Any]] = []
+        changes = forked(branches)
         if any(assigns for *_, assigns in changes):
             return None
-        targets = [target if target is not None and target != source else None for source, _, target, _ in changes]
+        targets = [
+            tuple(source if t is None else t for t in target) if isinstance(target, tuple)
+            else target if target is not None and target != source else None
+            for source, _, target, _ in changes
+        ]
         if gated and changes and all(x == targets[0] for x in targets):
             return [(field, None, targets[0])] if targets[0] is not None else []
         for (source, guard, _, _), target in zip(changes, targets, strict=True):
@@ -528,7 +529,7 @@ class _Planner:
 
     def event(self, event: Event) -> EventPlan:
         effect: list[str] = []
-        moves: list[tuple[str, str | None, str]] | None = []
+        moves: list[tuple[str, str | None, Any]] | None = []
         gates: list[str] = []
         for automaton in self.network.automata:
             if event not in automaton.alphabet:

@@ -41,9 +41,12 @@ def markdown_cell(value: object) -> str:
 
 
 def _python_literal(value: object) -> str:
-    """A string (or number) from the model as a Python literal: ``repr`` escapes it."""
+    """A string (or number, or a tuple of them) from the model as a Python literal: ``repr``
+    escapes it."""
     if isinstance(value, str | int | float | bool) or value is None:
         return repr(value)
+    if isinstance(value, tuple):
+        return "(" + "".join(_python_literal(item) + ", " for item in value) + ")"
     raise TypeError(f"no Python literal for {value!r}")
 
 

@@ -160,6 +160,14 @@ class Simulator:
         self._violation: Violation | None = None
         self.lookahead = Lookahead(result)
         self.unjudged = 0  # states where the look-ahead gave up (synthesis' own judgement stood)
+        # an event with several outcomes (the model's transitions from one place on one event to
+        # different places): the simulator stands for the robot and says which one it had: the
+        # one a script names (``status -> broken``), a random one in a random run, else the first
+        self.pick: str | None = None
+        self.rng: random.Random | None = None
+        self.told: list[str] = []  # what it said since the last command
+        self.naming = "EVENT"  # the event the user named (for the hint how to pick)
+        self.supervisor.outcome = self._outcome
 
     # ---- state ---------------------------------------------------------------------------
     def network_state(self) -> NetworkState:
@@ -250,6 +258,39 @@ class Simulator:
                 describe(self.network, state),
             )
 
+    def _outcome(self, label: str, outcomes: tuple[Any, ...]) -> Any:
+        """Which of ``outcomes`` the event had, for ``label`` (see ``pick``), said to the user."""
+        if self.pick is not None and self.pick in outcomes:
+            chosen, how = self.pick, "as picked"
+        elif self.rng is not None:
+            chosen, how = self.rng.choice(outcomes), "at random"
+        else:
+            other = next(o for o in outcomes if o != outcomes[0])
+            chosen, how = outcomes[0], f"the first; say `{self.naming} -> {other}` for another"
+        self.told.append(f"{label} -> {chosen} (one of {', '.join(map(str, outcomes))}: {how})")
+        return chosen
+
+    def _told(self, outcome: Outcome) -> Outcome:
+        """``outcome`` with what the simulator said of the outcomes it chose."""
+        told, self.told, self.pick, self.naming = self.told, [], None, "EVENT"
+        return Outcome(outcome.events, (*told, *outcome.messages), outcome.steps) if told else outcome
+
+    def _picked(self, name: str, value: object, raw: bool, pick: str) -> None:
+        """``name -> pick``: ``pick`` must be an outcome the event can have now."""
+        event = self.supervisor.EVENT[name]
+        if raw and event.convert is not None:
+            try:
+                value = event.convert[0](value)
+            except Exception:
+                value = None
+        outcomes = self.supervisor.outcomes(name, value)
+        if not any(pick in values for values in outcomes.values()):
+            have = "; ".join(f"{label}: {' or '.join(map(str, v))}" for label, v in outcomes.items())
+            raise CommandError(
+                f"{name} -> {pick}: " + (f"its outcomes now are {have}" if have else f"{name} has one outcome now")
+            )
+        self.pick = pick
+
     # ---- commands -------------------------------------------------------------------------
     def tick(self) -> Outcome:
         self.step += 1
@@ -325,8 +366,14 @@ class Simulator:
         text = line.strip()
         if not text or text.startswith("#"):
             return Outcome(())
+        text, arrow, pick = text.partition("->")
+        text, pick = text.strip(), pick.strip()
+        if arrow and not pick:
+            raise CommandError("-> names the outcome: `status -> broken`")
         word, _, rest = text.partition(" ")
         rest = rest.strip()
+        if arrow and word not in self.event_names() and self.full_name(word) is None:
+            raise CommandError(f"-> {pick}: only after an event (`status -> {pick}`)")
         if word == "tick":
             if rest and not rest.isdigit():
                 raise CommandError(f"tick takes a number of cycles, not '{rest}'")
@@ -339,7 +386,7 @@ class Simulator:
                 outcome = self.tick()
                 events += outcome.events
                 steps += outcome.steps
-            return Outcome(tuple(events), steps=tuple(steps))
+            return self._told(Outcome(tuple(events), steps=tuple(steps)))
         if word == "expect":
             return self.expect(rest)
         if word == "sleep":
@@ -349,16 +396,22 @@ class Simulator:
                 raise CommandError(f"sleep takes seconds, not '{rest}'") from None
             time.sleep(max(0.0, min(seconds, 3600.0)))
             return Outcome(())
+        if word in self.event_names():
+            self.naming = word
         if word in self.supervisor.CONTROLLABLE:
             if rest:
                 raise CommandError(f"{word} is controllable: the supervisor provides its data")
-            return self.perform(word)
+            if arrow:
+                self._picked(word, None, False, pick)
+            return self._told(self.perform(word))
         if word in self.supervisor.UNCONTROLLABLE:
             value, raw = self.parse_data(word, rest)
-            return self.deliver(word, value, raw)
+            if arrow:
+                self._picked(word, value, raw, pick)
+            return self._told(self.deliver(word, value, raw))
         full = self.full_name(word)
         if full is not None:
-            return self.run(f"{full} {rest}")
+            return self.run(f"{full} {rest}" + (f" -> {pick}" if arrow else ""))
         raise CommandError(f"unknown command or event '{word}'" + _suggest(word, [*COMMANDS, *self.event_names()]))
 
     def full_name(self, word: str) -> str | None:
@@ -419,12 +472,16 @@ class Simulator:
         """A tick, or an uncontrollable event the plant can take (with random data)."""
         options = ["tick", *self.expected()]
         choice = rng.choice(options)
-        if choice == "tick":
-            return self.tick()
-        enum = self.received_enum(choice)
-        if enum is not None:
-            return self.deliver(choice, rng.choice(enum.values).name, raw=False)
-        return self.deliver(choice, self.random_data(choice, rng))
+        self.rng = rng  # an event with several outcomes has a random one
+        try:
+            if choice == "tick":
+                return self._told(self.tick())
+            enum = self.received_enum(choice)
+            if enum is not None:
+                return self._told(self.deliver(choice, rng.choice(enum.values).name, raw=False))
+            return self._told(self.deliver(choice, self.random_data(choice, rng)))
+        finally:
+            self.rng = None
 
     def random_data(self, name: str, rng: random.Random) -> object:
         """Random data of the type the event carries (plain values, Data objects, lists)."""

@@ -74,6 +74,11 @@ class Code(str, Enum):
         "uncontrollable-requirement",
         "warning: a requirement on a message the robot sends, which the supervisor cannot forbid",
     )
+    SEVERAL_OUTCOMES = (
+        "several-outcomes",
+        "warning: an event has several outcomes (transitions from one state on one event to different states): "
+        "the controller is unconfirmed among them until the robot tells which",
+    )
     NEVER_ALLOWED = "never-allowed", "warning: synthesis disables a controllable event everywhere"
     NEVER_HOLDS = "never-holds", "warning: a requirement's condition holds in no reachable state"
     UNREACHED_STATE = "unreached-state", "warning: no controlled run reaches a state"

@@ -29,6 +29,7 @@ from robosc.language.checks import (
     package_name,
     provide_direction,
     result_types,
+    several_outcomes,
     shared_topics,
     synthesis_types,
     topic_names,
@@ -64,6 +65,7 @@ CHECKS: tuple[Check, ...] = (
     variable_ranges.check,  # constants in a variable's range (warning outside synthesis)
     implicit_start.check,  # warning: an enum variable read with no initial value
     uncontrollable_requirements.check,  # warning: a requirement on what the robot sends
+    several_outcomes.check,  # warning: an event with several outcomes, and what tells them apart
     limits.check,  # sizes synthesis cannot represent
     package_name.check,  # a robot's name names a ROS package: a letter first
     instances.check,  # instance and group names clash with no other

@@ -13,14 +13,15 @@ import json
 import time
 from typing import Any, Callable, Dict, Optional, Tuple
 
-from .answers import Answers, moved
+from .answers import moved
+from .outcomes import Outcomes
 from .reading import Unreadable, fits
 from .tables import Event
 from .unknown import TooMany, Unknown, completions, distinct
 from .values import Data, plain
 
 
-class Belief(Answers):
+class Belief(Outcomes):
     """What the supervisor believes of where the robots are.
 
     It owns ``unconfirmed`` (field -> the values it may have, None: any), ``why`` (per
@@ -35,6 +36,8 @@ class Belief(Answers):
         self.unconfirmed: Dict[str, Optional[Tuple[Any, ...]]] = {}
         self.why: Dict[str, str] = {}
         self.versions: Dict[str, int] = {}  # field -> how many times its candidates changed
+        self._trying = False  # while _over tries completions: outcomes are noted, not unconfirmed
+        self._forked: list[Tuple[str, Tuple[Any, ...]]] = []  # (field, outcomes) of the event tried
         if not confirmed:
             self.unconfirm(
                 dict((attribute, self.CANDIDATES[attribute]) for attribute in self.COMPONENT_OF),
@@ -135,7 +138,7 @@ class Belief(Answers):
     def _answer_trial(self, method: str, attribute: str) -> Callable[[], Any]:
         def run() -> Any:
             getattr(self, method)(Unknown("value"))
-            return getattr(self, attribute)
+            return [state[self.INDEX[attribute]] for state in self._variants()]
 
         return run
 
@@ -150,7 +153,7 @@ class Belief(Answers):
             except TooMany:
                 component = self.COMPONENT_OF.get(attribute, attribute)
                 return dict((a, self.CANDIDATES[a]) for a in self.COMPONENTS.get(component, (attribute,)))
-            values.extend(value for _, value in outcomes)
+            values.extend(value for _, some in outcomes for value in some)
         return {attribute: distinct(values)}
 
     def _over(self, run: Callable[[], Any]) -> list[Tuple[Dict[str, Any], Any]]:
@@ -169,13 +172,17 @@ class Belief(Answers):
                 setattr(self, attribute, value)
             self._dirty = True
             self._sent = {}
+            self._forked = []
 
+        self._trying = True
         try:
             return completions(self.unconfirmed, assign, run)
         finally:
             for attribute, value in zip(self.ATTRIBUTES, saved):
                 setattr(self, attribute, value)
             self._dirty, self._sent, self.observer = dirty, sent, observer
+            self._trying = False
+            self._forked = []
 
     def _settle_fields(self, states: list[list[Any]]) -> None:
         """After an event taken in several completions: each field known where it has one value
@@ -258,7 +265,7 @@ class Belief(Answers):
                     del self.send
                 else:
                     self.send = send  # type: ignore[method-assign]
-            return result, sent, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+            return result, sent, self._variants()
 
         try:
             outcomes = self._over(run)
@@ -275,7 +282,7 @@ class Belief(Answers):
             return None
         if sent and not self.send(event.name, sent[0]):
             return None
-        self._settle_fields([states for _, (_, _, states) in outcomes])
+        self._settle_fields([state for _, (_, _, states) in outcomes for state in states])
         self._dirty = True
         if self.observer is not None:
             self._record(event.name, True, sent[0] if sent else data)
@@ -294,14 +301,14 @@ class Belief(Answers):
             why = self._not_taken(event.name, stamp)
             state = [getattr(self, attribute) for attribute in self.ATTRIBUTES]
             if why is not None:
-                return why, state
+                return why, [state]
             if doubt:  # a second copy of an earlier answer leaves it where it was
                 befores.append(state)
             try:
                 getattr(self, event.method)(value)
             except Unreadable as error:
                 return error
-            return None, [getattr(self, attribute) for attribute in self.ATTRIBUTES]
+            return None, self._variants()
 
         saved = type(self).GETTER(self)
         try:
@@ -318,7 +325,7 @@ class Belief(Answers):
             return self._unreadable(event, unreadable[0])
         if all(why is not None for _, (why, _) in outcomes):
             return self.ignore(event.name, outcomes[0][1][0] if outcomes else "not expected now")
-        states = [state for _, (_, state) in outcomes] + befores
+        states = [state for _, (_, some) in outcomes for state in some] + befores
         if befores and self._settles_as_it_is(states):  # a copy, or an answer: the belief has both already
             for field, _ in self.ANSWERS[event.name]:  # but something may have changed: ask at once
                 component = self.COMPONENT_OF[field]

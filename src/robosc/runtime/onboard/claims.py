@@ -50,7 +50,7 @@ class NodeClaims(NodeBase):
         }
         self.others: Dict[str, Tuple[float, Dict[str, Any]]] = {}  # id -> (when heard, monotonic; claim)
         self.listening_since = time.monotonic()  # commands nothing until CLAIM_WAIT after this
-        self.claimed = -1e18  # when this node last published its claim (monotonic)
+        self.claimed: Optional[float] = None  # when this node last published its claim (monotonic)
         self.commanding = False
         self.standby = None
         self.taken_over = False  # it has held for another: it starts again unconfirmed when it commands
@@ -80,10 +80,11 @@ class NodeClaims(NodeBase):
         if self.claim is None:
             return
         now = time.monotonic()
-        if now - self.claimed >= CLAIM_INTERVAL:
-            if now - self.claimed > CLAIM_TIMEOUT and self.commanding:
+        last = self.claimed
+        if last is None or now - last >= CLAIM_INTERVAL:
+            if last is not None and now - last > CLAIM_TIMEOUT and self.commanding:
                 # it could not claim for a while (stopped, starved): another may have taken over
-                self.log("warning", "no claim published for %.1f s: listening again before commanding" % (now - self.claimed))
+                self.log("warning", "no claim published for %.1f s: listening again before commanding" % (now - last))
                 self.commanding = False
                 self.taken_over = True
                 self.listening_since = now

@@ -281,9 +281,12 @@ class NodeCore(NodeView, NodeReports, NodeTasks, NodeClaims, SupervisionLayer):
     # ---- after each callback and cycle -------------------------------------------------------
     def checkpoint(self) -> None:
         """After each callback and cycle: follow the commands sent meanwhile (what each changed
-        stays unconfirmed until it is acknowledged), and report on ``health`` (latched) when
-        what the node holds changed."""
+        stays unconfirmed until it is acknowledged), ask at once the drivers of the components an
+        answer or an event with several outcomes left unconfirmed, and report on ``health``
+        (latched) when what the node holds changed."""
         self.delivery.follow()
+        if self.supervisor.doubted:
+            self.ask_again(self.supervisor.doubted)
         if self.queue_changed:
             try:
                 self.publish_queue()
@@ -430,8 +433,6 @@ class NodeCore(NodeView, NodeReports, NodeTasks, NodeClaims, SupervisionLayer):
                 else:
                     for name, communication in topic.takes:
                         supervisor.deliver(name, received(communication, message), True, stamp)
-                if supervisor.doubted:
-                    self.ask_again(supervisor.doubted)
                 self.after_message()
         except Exception as error:  # a malformed message must not stop the node
             self.warnings("message on %s: %s: %s" % (topic.name, type(error).__name__, error), "receive " + topic.name)

@@ -7,7 +7,7 @@ component that waited too long for an answer the model expects is unconfirmed.""
 from __future__ import absolute_import, annotations
 
 import time
-from typing import List
+from typing import Any, List
 
 from .node_base import NodeBase
 
@@ -57,6 +57,17 @@ class NodeReports(NodeBase):
         else:
             self.requests.pop(component, None)
             self.asked_since.pop(component, None)
+
+    def reported_by(self, component: str, future: Any) -> None:
+        """A report request's future (rclpy's) is done: its std_srvs/Trigger response, or why not."""
+        try:
+            response = future.result()
+        except Exception as error:
+            self.not_answered(component)
+            self.warnings("%s could not report: %s" % (component, error), "report " + component)
+            return
+        if response is not None:
+            self.report(component, bool(response.success), str(response.message))
 
     def not_answered(self, component: str) -> None:
         """The oldest report request of ``component`` out will not be answered (it failed, or the

@@ -234,16 +234,6 @@ class SupervisorNode(Node, NodeCore):
         future.add_done_callback(self.callback(self.reported_by, component))
         return True
 
-    def reported_by(self, component: str, future: Any) -> None:
-        try:
-            response = future.result()
-        except Exception as error:
-            self.not_answered(component)
-            self.warnings("%s could not report: %s" % (component, error), "report " + component)
-            return
-        if response is not None:
-            self.report(component, bool(response.success), str(response.message))
-
     # ---- the cycle and data ---------------------------------------------------------------------
     def cycle(self) -> None:
         for timer in self.spent:

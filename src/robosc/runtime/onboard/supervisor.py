@@ -108,6 +108,7 @@ class Supervisor(Belief, Effects):
         self.health_changes = 0  # counts the changes of what health() shows
         self._init_answers()
         self.tasks: Optional[Dispatcher] = None  # a fleet's tasks and its choice with a purpose (tasks.py)
+        self.outcome = None  # (belief.py: who says which outcome an event with several had)
         self.reset(confirmed)
 
     def reset(self, confirmed: bool = True) -> None:

@@ -126,16 +126,20 @@ class _Computed(object):
 ANY = _Computed()
 
 
-def moves(method: str, name: str, controllable: bool, *changes: Tuple[str, Optional[str], str]) -> Any:
+def moves(method: str, name: str, controllable: bool, *changes: Tuple[str, Optional[str], Any]) -> Any:
     """The method performing an event whose effect is only location changes (a reset, a tau
     transition, a response that moves a component): ``changes`` are (field, from, to), tried
-    in order; for each field the first whose ``from`` is its location (None: any) applies."""
+    in order; for each field the first whose ``from`` is its location (None: any) applies. A
+    tuple ``to``: the event's outcomes there (``_fork``)."""
 
     def perform(self: Any, data: Any = None) -> Optional[str]:
         done = set()
         for field, source, target in changes:
             if field not in done and (source is None or getattr(self, field) == source):
-                setattr(self, field, target)
+                if type(target) is tuple:
+                    self._fork(field, target)
+                else:
+                    setattr(self, field, target)
                 done.add(field)
         if not controllable:
             return None
@@ -145,7 +149,7 @@ def moves(method: str, name: str, controllable: bool, *changes: Tuple[str, Optio
         return name
 
     perform.__name__ = method
-    perform.__doc__ = "%s: %s" % (name, ", ".join("%s %s -> %s" % change for change in changes))
+    perform.__doc__ = "%s: %s" % (name, ", ".join("%s %s -> %s" % (f, a, b) for f, a, b in changes))
     return perform
 
 
