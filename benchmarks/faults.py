@@ -19,6 +19,14 @@ against where the robots really were.
 * **answers again later**: every answer sent again 0.05 to 1.5 s after it (a flaky bridge, a
   driver's retry), for 60 s. Forbidden commands, and the seconds at the end with no command (a
   fleet that froze).
+* **two coordinators**: the same command line twice, 10 s apart, for 60 s; then the first killed.
+  Forbidden commands, commands by the second while the first lived, and how long after the
+  first's death the second commanded.
+* **an event with two outcomes**: docs/models/outcomes.rscd's worker, whose task ends broken,
+  done, broken, ... (its driver reports): commands wrong where the arm really was.
+* **storage**: the maze solver's node under a read-only ``ROS_HOME``, and with ``ROS_HOME`` and
+  its event log on a full disk (tmpfs mounts: root): whether it ran, its exit status after
+  SIGINT, tracebacks, Fast DDS profiles left in /dev/shm.
 * **the stop held, restarted**: the line follower stopped, killed, started again with its
   state file kept, and with it deleted: move commands in 8 s.
 
@@ -304,6 +312,121 @@ def answers_again(package: tuple[Path, str], work: Path) -> dict[str, Any]:
         graph.close()
 
 
+def two_coordinators(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    """The same command line twice, the second 10 s after the first, for 60 s; then the first
+    killed, for 20 s more."""
+    graph = Graph(work)
+    logs = [work / "first.jsonl", work / "second.jsonl"]
+    world = World(delay=0.2)
+    wire = Ros2Wire(graph.node, graph.executor, world)
+    try:
+        first = graph.start(package, *PARAMS, "-p", f"event_log:={logs[0]}")
+        wire.run(10)
+        second_started = time.time()
+        graph.start(package, *PARAMS, "-p", f"event_log:={logs[1]}")
+        wire.run(50)
+        both = [r for r in log_of(logs[1]) if r.get("controllable")]
+        first.kill()
+        killed = time.time()
+        wire.run(20)
+        records = sorted([r for log in logs for r in log_of(log) if r.get("controllable")], key=lambda r: r["time"])
+        found, checked = forbidden(records, world.received, world.sent)
+        after = [r["time"] for r in log_of(logs[1]) if r.get("controllable") and r["time"] > killed]
+        return {
+            "forbidden": len(found),
+            "commands": checked,
+            "commands by the second while the first lived": len([r for r in both if r["time"] > second_started]),
+            "seconds from the first's death to the second's first command": round(after[0] - killed, 1) if after else "none",
+        }
+    finally:
+        graph.close()
+
+
+WORKER = "docs/models/outcomes.rscd"
+
+
+def two_outcomes(package: tuple[Path, str], work: Path) -> dict[str, Any]:
+    """The worker's task ends broken, done, broken, ... in turn; its driver reports; 60 s."""
+    from std_msgs.msg import Empty
+    from std_srvs.srv import Trigger
+
+    graph = Graph(work)
+    arm = {"at": "idle", "ends": 0}
+    wrong: list[str] = []
+    sent: list[str] = []
+    due: list[float] = []
+    status = graph.node.create_publisher(Empty, "/status", 10)
+
+    def heard(command: str) -> Any:
+        def take(_: Any) -> None:
+            sent.append(command)
+            if arm["at"] != {"start": "idle", "home": "done", "repair": "broken"}[command]:
+                wrong.append(f"{command} while {arm['at']}")
+            arm["at"] = "working" if command == "start" else "idle"
+            if command == "start":
+                due.append(time.monotonic() + 0.2)
+
+        return take
+
+    def report(_: Any, response: Any) -> Any:
+        response.success, response.message = True, arm["at"]
+        return response
+
+    for command in ("start", "home", "repair"):
+        graph.node.create_subscription(Empty, f"/{command}", heard(command), 10)
+    graph.node.create_service(Trigger, "/robosc/report/arm", report)
+    try:
+        graph.start(package)
+        end = time.monotonic() + 60
+        while time.monotonic() < end:
+            if due and due[0] <= time.monotonic():
+                due.pop(0)
+                arm["ends"] += 1
+                arm["at"] = "broken" if arm["ends"] % 2 else "done"
+                status.publish(Empty())
+            graph.executor.spin_once(timeout_sec=0.01)
+        return {"commands wrong where the arm was": len(wrong), "tasks ended": arm["ends"],
+                "repairs": sent.count("repair"), "homes": sent.count("home")}
+    finally:
+        graph.close()
+
+
+def storage(package: tuple[Path, str], work: Path, how: str) -> dict[str, Any]:
+    """The maze solver's node for 3 s under a read-only ROS_HOME (``how`` "read-only") or with
+    ROS_HOME and the event log on a full disk ("full"), then stopped with SIGINT."""
+    disk = work / "disk"
+    disk.mkdir(parents=True, exist_ok=True)
+    options = "ro" if how == "read-only" else "size=64k"
+    subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(disk)], check=True)
+    graph = Graph(work)
+    before = {n for n in os.listdir("/dev/shm") if n.startswith("robosc-fastdds")}
+    try:
+        if how == "full":
+            (disk / "log").mkdir()
+            handle = os.open(disk / "filler", os.O_WRONLY | os.O_CREAT)
+            with contextlib.suppress(OSError):
+                while os.write(handle, b"\0" * 4096):
+                    pass
+            os.close(handle)
+        output = work / "node.txt"
+        with open(output, "wb") as out:
+            folder, module = package
+            env = {**graph.env, "ROS_HOME": str(disk), "PYTHONPATH": str(folder)}
+            env.pop("ROS_LOG_DIR", None)
+            args = ["-p", f"event_log:={disk / 'events.jsonl'}", "-p", "wait_for_data:=false", "-p", "trust_initial_state:=true"]
+            node = subprocess.Popen([sys.executable, "-m", f"{module}.node", "--ros-args", *args], env=env, stdout=out, stderr=out)
+            time.sleep(3.0)
+            alive = node.poll() is None
+            node.send_signal(signal.SIGINT)
+            status = node.wait(20)
+        text = output.read_text(errors="replace")
+        left = {n for n in os.listdir("/dev/shm") if n.startswith("robosc-fastdds")} - before
+        return {"ran": alive, "exit status": status, "tracebacks": text.count("Traceback"), "profiles left in /dev/shm": len(left)}
+    finally:
+        graph.close()
+        subprocess.run(["umount", "-l", str(disk)], check=False)
+
+
 def answered_once(log: Path, received: Any, sent: Any) -> dict[str, Any]:
     """Forbidden commands, and the answers in the event log that no robot gave (duplicates and
     spurious answers taken as events)."""
@@ -508,6 +631,30 @@ with lock:
         master.close()
 
 
+def ros1_two_coordinators(package: Path, work: Path) -> dict[str, Any]:
+    """The same command line twice, 10 s apart; the robots' 50 s after the second started."""
+    master = Master(work)
+    logs = [work / "first.jsonl", work / "second.jsonl"]
+    try:
+        master.node(package, logs[0])
+        body = """
+run(60)
+with lock:
+    done(json.loads(world.dump()))
+"""
+        world = ros1_world(master, work, False, body)
+        time.sleep(10)
+        second_started = time.time()
+        master.node(package, logs[1])
+        result = ros1_result(world)
+        records = sorted([r for log in logs for r in log_of(log) if r.get("controllable")], key=lambda r: r["time"])
+        found, checked = forbidden(records, result["received"], result["sent"])
+        later = [t for t, _ in result["received"] if t > second_started + 5]
+        return {"forbidden": len(found), "commands": checked, "commands the robots got from 5 s after the second started": len(later)}
+    finally:
+        master.close()
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--baseline", default=None)
@@ -524,6 +671,8 @@ def main() -> None:
             label = "this" if revision is None else revision
             warehouse = generate("docs/models/warehouse_zero_time.rscd", work / f"wh_{label}", revision, work)
             line = generate("examples/line_follower.rscd", work / f"lf_{label}", revision, work)
+            worker = generate(WORKER, work / f"wk_{label}", revision, work)
+            maze = generate("examples/maze_solver.rscd", work / f"mz_{label}", revision, work)
             warehouse1 = revisions.generate(ROOT / "docs/models/warehouse_zero_time.rscd", 1, work / f"wh1_{label}", revision, work)
             for run in range(args.runs):
                 tag = f"{label}{run}"
@@ -533,6 +682,10 @@ def main() -> None:
                     ("a driver killed", driver_killed, (warehouse, work / f"d{tag}")),
                     ("answers twice, and spurious", answers_twice, (warehouse, work / f"t{tag}")),
                     ("answers again 0.05-1.5 s later", answers_again, (warehouse, work / f"a{tag}")),
+                    ("two coordinators, the same command line", two_coordinators, (warehouse, work / f"c{tag}")),
+                    ("an event with two outcomes", two_outcomes, (worker, work / f"o{tag}")),
+                    ("ROS_HOME read-only", storage, (maze, work / f"r{tag}", "read-only")),
+                    ("ROS_HOME and the event log on a full disk", storage, (maze, work / f"f{tag}", "full")),
                     ("stop held, restarted, state file kept", stop_held, (line, work / f"s{tag}", True)),
                     ("stop held, restarted, state file deleted", stop_held, (line, work / f"m{tag}", False)),
                 ]
@@ -542,6 +695,7 @@ def main() -> None:
                         ("ROS 1: a driver killed", ros1_driver_killed, (warehouse1, work / f"d1{tag}")),
                         ("ROS 1: answers twice, and spurious", ros1_answers_twice, (warehouse1, work / f"t1{tag}")),
                         ("ROS 1: answers again 0.05-1.5 s later", ros1_answers_again, (warehouse1, work / f"a1{tag}")),
+                        ("ROS 1: two coordinators, the same command line", ros1_two_coordinators, (warehouse1, work / f"c1{tag}")),
                     ]
                 if args.only:
                     scenarios = [x for x in scenarios if any(word in x[0] for word in args.only)]

@@ -249,6 +249,14 @@ CASES = {
         (robot(component(OK_STATES, 'incoming message m with type: string'), 'provide m with "\x1b[2J"'), "U+001B"),
     ],
     "uncontrollable-requirement": [(robot("requirement sense needs S.idle"), "'sense' is a message the robot sends")],
+    "several-outcomes": [
+        (
+            robot(component(
+                "initial marked state a { on response from m goto b on response from m goto c } marked state b {} "
+                "marked state c {}", "outgoing message m with type: none")),
+            "'on response from m' in C's state 'a' has 2 outcomes (b, c)",
+        ),
+    ],
     "enum-default": [
         (robot("datatype enum E from double to { value > 1.0 -> big }"), "has no default rule"),
         (robot("datatype enum E from double to { default -> a default -> b }"), "more than one default"),
@@ -328,6 +336,9 @@ VALID = {
     "package-name": robot().replace("robot R", "robot R_"),
     "text": robot(component(OK_STATES, "incoming message m with type: string"), 'provide m with "a\\tb\\n\\r\tc"'),
     "uncontrollable-requirement": robot("requirement act needs S.idle"),
+    "several-outcomes": robot(component(
+        "initial marked state a { on response from m goto b on response from m goto b } marked state b {}",
+        "outgoing message m with type: none")),
     "enum-default": robot("datatype enum E from double to { value > 1.0 -> big default -> small }"),
     "enum-values": robot("datatype enum E from double to { value > 1.0 or value < -1.0 -> big default -> small }"),
     "no-array": robot(
