@@ -2,8 +2,10 @@
 rospy), in one run: message in -> command out.
 
 The maze solver's node, with its default parameters but ``tick_on_message`` (a cycle right
-after each message, as a relay does; the default waits for the 10 Hz timer), and a bare relay
-written for the same middleware (a scan in, a Twist out, nothing checked), take turns behind
+after each message, as a relay does; the default waits for the 10 Hz timer), a bare relay
+written for the same middleware (a scan in, a Twist out, nothing checked) and a maze solver
+written by hand for it (the four ranges read, the platform's state kept, the model's three
+rules), take turns behind
 one robot process that sends a scan, waits for the command, and sends the next after a gap.
 Printed side by side, in microseconds, median (p99):
 
@@ -93,6 +95,33 @@ def relay(message):
     inside.append(time.perf_counter() - start)
 """
 
+# a maze solver written by hand for the same middleware, the job robosc's node does: the four
+# ranges the model reads, the platform's state (ready or turning) kept, the model's three rules
+HAND = """inside = []
+ready = [True]
+def relay(message):
+    start = time.perf_counter()
+    ranges = message.ranges
+    front = ranges[0] < 0.6
+    right = ranges[270] < 0.7 or ranges[240] < 0.7
+    diag_right = ranges[225] < 0.9
+    if not ready[0]:
+        return
+    if not front and (right or not diag_right):
+        command = Twist()
+        command.linear.x = 0.3
+        out.publish(command)
+        inside.append(time.perf_counter() - start)
+    elif front:
+        ready[0] = False
+        left.publish(Int16(data=90))
+    elif not right and diag_right:
+        ready[0] = False
+        turn_right.publish(Int16(data=90))
+def done(_):
+    ready[0] = True
+"""
+
 RELAY_ROS2 = """
 import json, signal, sys, time, rclpy
 from rclpy.qos import QoSProfile, ReliabilityPolicy
@@ -101,7 +130,12 @@ from geometry_msgs.msg import Twist
 rclpy.init()
 node = rclpy.create_node("relay")
 out = node.create_publisher(Twist, "/cmd_vel", QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
+from std_msgs.msg import Empty, Int16
+left = node.create_publisher(Int16, "/rotate_left", QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
+turn_right = node.create_publisher(Int16, "/rotate_right", QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
 {relay}node.create_subscription(LaserScan, "/scan", relay, QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+if "done" in globals():
+    node.create_subscription(Empty, "/rotate_done", done, QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE))
 def save(*_):
     with open(sys.argv[1], "w") as handle:
         json.dump(inside, handle)
@@ -120,7 +154,12 @@ from sensor_msgs.msg import LaserScan
 from geometry_msgs.msg import Twist
 rospy.init_node("relay", disable_signals=True)
 out = rospy.Publisher("/cmd_vel", Twist, queue_size=10)
+from std_msgs.msg import Empty, Int16
+left = rospy.Publisher("/rotate_left", Int16, queue_size=10)
+turn_right = rospy.Publisher("/rotate_right", Int16, queue_size=10)
 {relay}rospy.Subscriber("/scan", LaserScan, relay, queue_size=10)
+if "done" in globals():
+    rospy.Subscriber("/rotate_done", Empty, done, queue_size=10)
 def save(*_):
     with open(sys.argv[1], "w") as handle:
         json.dump(inside, handle)
@@ -300,8 +339,8 @@ def node_command(mw: Middleware, package: tuple[Path, str, str], out: Path) -> l
     ]
 
 
-def relay_command(mw: Middleware, out: Path, profile: bool = False) -> list[str]:
-    script = (RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1).replace("{relay}", RELAY)
+def relay_command(mw: Middleware, out: Path, profile: bool = False, hand: bool = False) -> list[str]:
+    script = (RELAY_ROS2 if mw.ros == 2 else RELAY_ROS1).replace("{relay}", HAND if hand else RELAY)
     command = [mw.python, "-c", script, str(out)]
     if profile:  # the Fast DDS profile robosc's nodes load (onboard/fastdds.xml)
         xml = ROOT / "src/robosc/runtime/onboard/fastdds.xml"
@@ -404,6 +443,7 @@ def measure(
             theirs = generate(ros, work / f"base_{ros}", baseline, work)
             subjects.append((f"robosc {baseline}, default parameters", lambda out: node_command(mw, theirs, out)))
         subjects.append(("bare relay", lambda out: relay_command(mw, out)))
+        subjects.append(("hand-written maze solver", lambda out: relay_command(mw, out, hand=True)))
         if ros == 2:
             subjects.append(("bare relay, robosc's DDS profile", lambda out: relay_command(mw, out, True)))
         results: dict[str, dict[str, Any]] = {}

@@ -6,7 +6,8 @@ relative to its namespace: the same topic for two nodes started with the same co
 every ``CLAIM_INTERVAL`` seconds, and reads the others'. The node started first (the earliest
 ``since``; a tie goes to the smaller ``id``) commands; any other holds every command, says why in
 its log and on ``health`` (``coordinator``), and keeps listening. A node commands only after it
-has listened for ``CLAIM_WAIT`` seconds since it started, or since it last could not publish
+has listened for ``CLAIM_WAIT`` seconds since it started and heard every claim the middleware
+knows to be published (ROS 2: the claim topic's publishers discovered), or since it last could not publish
 its claim for ``CLAIM_TIMEOUT`` seconds (a process stopped and resumed: another may have taken
 over meanwhile). A claim not heard for ``CLAIM_TIMEOUT`` seconds is gone: the next node in line
 takes over, with everything it believes unconfirmed (it asks the drivers' reports, and waits
@@ -30,7 +31,7 @@ from .node_base import NodeBase
 CLAIM_TOPIC = "robosc/coordinator"
 CLAIM_INTERVAL = 0.5  # seconds between two claims of a node
 CLAIM_TIMEOUT = 2.0  # seconds without a claim from a node before it counts as gone
-CLAIM_WAIT = 1.5  # seconds a node listens for others before it commands
+CLAIM_WAIT = 2.0  # seconds a node listens for others before it commands
 MAX_CLAIM_TEXT = 1000  # characters of a claim read at most
 
 
@@ -54,6 +55,10 @@ class NodeClaims(NodeBase):
         self.commanding = False
         self.standby = None
         self.taken_over = False  # it has held for another: it starts again unconfirmed when it commands
+        # claims gone (no claim for CLAIM_TIMEOUT) whose publishers the middleware may still list
+        # (ROS 2 keeps a dead node's for its lease, 20 s), and how many it listed at the last look
+        self.gone = 0
+        self.listed = 0
 
     def claim_heard(self, message: Any) -> None:
         """A claim on ``robosc/coordinator`` (this node's own too, which it skips)."""
@@ -96,6 +101,7 @@ class NodeClaims(NodeBase):
         for key, (heard, claim) in list(self.others.items()):
             if now - heard > CLAIM_TIMEOUT:
                 del self.others[key]
+                self.gone += 1
                 self.log("warning", "the controller %s is gone (no claim for %.1f s)" % (describe(claim), now - heard))
         self.decide()
 
@@ -116,6 +122,17 @@ class NodeClaims(NodeBase):
             return
         if time.monotonic() - self.listening_since < CLAIM_WAIT:
             return
+        listed = self.claimers()
+        if listed < self.listed:  # the middleware dropped publishers: of the gone ones first
+            self.gone = max(0, self.gone - (self.listed - listed))
+        self.listed = listed
+        unheard = listed - len(self.others) - self.gone
+        if unheard > 0 and not self.commanding:  # the middleware knows of a claim not heard yet
+            if self.standby is None:
+                self.standby = "%d other controller(s) on %s not heard from yet" % (unheard, CLAIM_TOPIC)
+                self.log("warning", "holding every command: %s" % self.standby)
+                self.supervisor.health_changes += 1
+            return
         if not self.commanding:
             self.commanding = True
             self.standby = None
@@ -125,6 +142,11 @@ class NodeClaims(NodeBase):
                 self.supervisor.reset(confirmed=False)
                 self.asked.clear()
                 self.log("warning", "commanding now (no older controller left); where the robots are is unconfirmed")
+
+    def claimers(self) -> int:
+        """How many other nodes publish on ``CLAIM_TOPIC``, as the middleware knows (0: it cannot
+        tell); a node waits for the claim of each before it commands."""
+        return 0
 
     def claim_health(self) -> Optional[Dict[str, Any]]:
         """What ``health`` says of the claims (None: a supervision layer)."""

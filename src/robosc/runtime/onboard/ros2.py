@@ -227,6 +227,9 @@ class SupervisorNode(Node, NodeCore):
         """Whether every subscriber of a command topic acknowledged all it was sent."""
         return bool(topic.publisher.wait_for_all_acked(self.NOW))
 
+    def claimers(self) -> int:
+        return max(0, self.count_publishers(self.resolve_topic_name(CLAIM_TOPIC)) - 1)
+
     def ask_report(self, component: str, client: Any) -> bool:
         if not client.service_is_ready():
             return False
