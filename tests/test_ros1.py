@@ -89,6 +89,7 @@ scan_pub.publish(scan([5.0] * 360))
 report["start"] = speeds(0.5)  # held: no correction yet
 correction.publish(Float32(data=10.0))
 assert wait_for(lambda: state.value("Lidar.safety") == "safe" and state.value("LineDetector") == "line_found")
+assert wait_for(lambda: state.last()["health"]["coordinator"]["commanding"])  # (2 s of listening for another)
 report["driving"] = speeds(0.5)
 report["steer"] = cmd.messages()[-1].angular.z
 stop.publish(Empty())

@@ -29,6 +29,11 @@ def _state(states: list[Any]) -> dict[str, Any]:
     return {**data["automata"], **data["variables"]}
 
 
+def _commanding(states: list[Any]) -> bool:
+    """Whether the node's last state says it commands (it listened for other controllers first)."""
+    return bool(states) and json.loads(states[-1].data)["health"]["coordinator"]["commanding"] is True
+
+
 def _confirmed(states: list[Any]) -> bool:
     """Whether the node's last state says every component is confirmed (its drivers reported)."""
     return bool(states) and json.loads(states[-1].data)["health"]["unconfirmed"] == {}
@@ -104,6 +109,7 @@ def test_line_follower_never_moves_while_stopped_or_unsafe(ros2: Ros2, tmp_path:
         return _state(states).get("Lidar.safety") == "safe" and _state(states).get("LineDetector") == "line_found"
 
     assert ros2.spin_until(data, 10)
+    assert ros2.spin_until(lambda: _commanding(states), 10)  # (2 s of listening for another controller)
     driving = speeds(0.5)
     assert 0.15 in driving
     assert abs(cmd[-1].angular.z - (-0.1)) < 1e-9
@@ -453,11 +459,16 @@ def test_node_serves_the_live_view(ros2: Ros2, tmp_path: Path) -> None:
         scan.publish(laser_scan([0.3] + [5.0] * 359))
         seen: list[str] = []
         end = time.monotonic() + 10
+        last = time.monotonic()
         while time.monotonic() < end and not any('"event": "turn_left"' in line for line in seen):
-            scan.publish(laser_scan([0.3] + [5.0] * 359))  # a LiDAR publishes all the time (best effort)
+            if time.monotonic() - last > 0.2:  # a LiDAR publishes all the time (best effort), at 5 Hz here,
+                # slower than the test reads the stream (the node turns 2 s after it starts: claims.py)
+                scan.publish(laser_scan([0.3] + [5.0] * 359))
+                last = time.monotonic()
             ros2.spin(0.01)
             seen.append(stream.readline().decode())
-    turn = next(line for line in seen if '"event": "turn_left"' in line)
+    turn = next((line for line in seen if '"event": "turn_left"' in line), None)
+    assert turn is not None, (len(seen), seen[-1:], ros2.processes.output())
     record = json.loads(turn.removeprefix("data: "))
     assert record["state"]["automata"]["Platform"] == "turning"
     assert record["controllable"] is True and record["data"] == 90

@@ -226,6 +226,7 @@ def run_ros(
                 "event_log": log,
                 "trust_initial_state": True,
                 "confirm_answers": False,
+                "claim": False,  # each robot's controller is started once, alone
                 **(params or {}),
             }
             graph.controller(package, name, given)

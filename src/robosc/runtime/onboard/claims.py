@@ -7,7 +7,8 @@ every ``CLAIM_INTERVAL`` seconds, and reads the others'. The node started first 
 ``since``; a tie goes to the smaller ``id``) commands; any other holds every command, says why in
 its log and on ``health`` (``coordinator``), and keeps listening. A node commands only after it
 has listened for ``CLAIM_WAIT`` seconds since it started and heard every claim the middleware
-knows to be published (ROS 2: the claim topic's publishers discovered), or since it last could not publish
+knows to be published (ROS 2: the claim topic's publishers discovered; ``CLAIM_TIMEOUT`` more at
+most, since DDS lists a killed node's publisher for its lease), or since it last could not publish
 its claim for ``CLAIM_TIMEOUT`` seconds (a process stopped and resumed: another may have taken
 over meanwhile). A claim not heard for ``CLAIM_TIMEOUT`` seconds is gone: the next node in line
 takes over, with everything it believes unconfirmed (it asks the drivers' reports, and waits
@@ -127,7 +128,10 @@ class NodeClaims(NodeBase):
             self.gone = max(0, self.gone - (self.listed - listed))
         self.listed = listed
         unheard = listed - len(self.others) - self.gone
-        if unheard > 0 and not self.commanding:  # the middleware knows of a claim not heard yet
+        # the middleware lists a claim publisher not heard yet: wait for its claim, CLAIM_TIMEOUT at
+        # most (a live node claims every CLAIM_INTERVAL; one killed stays listed for its lease)
+        waited = time.monotonic() - self.listening_since
+        if unheard > 0 and not self.commanding and waited < CLAIM_WAIT + CLAIM_TIMEOUT:
             if self.standby is None:
                 self.standby = "%d other controller(s) on %s not heard from yet" % (unheard, CLAIM_TOPIC)
                 self.log("warning", "holding every command: %s" % self.standby)
@@ -149,7 +153,7 @@ class NodeClaims(NodeBase):
         return 0
 
     def claim_health(self) -> Optional[Dict[str, Any]]:
-        """What ``health`` says of the claims (None: a supervision layer)."""
+        """What ``health`` says of the claims (None: a supervision layer, or ``claim`` false)."""
         if self.claim is None:
             return None
         return {"id": self.claim["id"], "commanding": self.commanding, "standby": self.standby,

@@ -150,6 +150,12 @@ PARAMETERS = (
         "answers as they come, for drivers that send each answer once and offer no report)",
     ),
     Parameter(
+        "claim",
+        True,
+        "a controller claims its robot or fleet on robosc/coordinator and commands only while no older "
+        "controller claims it (false: command at once, for a node known to be alone, e.g. a simulation's)",
+    ),
+    Parameter(
         "clock_skew",
         0.0,
         "seconds a robot's clock may be behind this node's, when an answer's stamp is compared with the command "
@@ -275,8 +281,10 @@ class NodeCore(NodeView, NodeReports, NodeTasks, NodeClaims, SupervisionLayer):
         self.still = frozenset(robot_class.STILL)
         self._plan_routes(robot_class)
         self.start_tasks(robot_class, self.params["policy"], lambda: self.clock())
-        if mode == "controller":  # one controller commands (claims.py)
+        if mode == "controller" and self.params["claim"]:  # one controller commands (claims.py)
             self.start_claims()
+        else:
+            self.commanding = mode == "controller"
 
     # ---- after each callback and cycle -------------------------------------------------------
     def checkpoint(self) -> None:
@@ -416,7 +424,7 @@ class NodeCore(NodeView, NodeReports, NodeTasks, NodeClaims, SupervisionLayer):
             self.supervisor.tick()
 
     def publish_state(self) -> None:
-        state = dict(self.supervisor.snapshot(), health=self.supervisor.health())
+        state = dict(self.supervisor.snapshot(), health=self.health())
         self.publish_text(STATE_TOPIC, json.dumps(state, sort_keys=True))
 
     # ---- data from the robot ---------------------------------------------------------------
