@@ -56,6 +56,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
+import disks  # noqa: E402
 import revision as revisions  # noqa: E402
 import warehouse_drivers as drivers  # noqa: E402
 from warehouse_world import ANSWERS, ROBOTS, Ros2Wire, World, follow, forbidden, take_driver  # noqa: E402
@@ -347,46 +348,18 @@ WORKER = "docs/models/outcomes.rscd"
 
 def two_outcomes(package: tuple[Path, str], work: Path) -> dict[str, Any]:
     """The worker's task ends broken, done, broken, ... in turn; its driver reports; 60 s."""
-    from std_msgs.msg import Empty
-    from std_srvs.srv import Trigger
+    from worker_stand_in import Worker
 
     graph = Graph(work)
-    arm = {"at": "idle", "ends": 0}
-    wrong: list[str] = []
-    sent: list[str] = []
-    due: list[float] = []
-    status = graph.node.create_publisher(Empty, "/status", 10)
-
-    def heard(command: str) -> Any:
-        def take(_: Any) -> None:
-            sent.append(command)
-            if arm["at"] != {"start": "idle", "home": "done", "repair": "broken"}[command]:
-                wrong.append(f"{command} while {arm['at']}")
-            arm["at"] = "working" if command == "start" else "idle"
-            if command == "start":
-                due.append(time.monotonic() + 0.2)
-
-        return take
-
-    def report(_: Any, response: Any) -> Any:
-        response.success, response.message = True, arm["at"]
-        return response
-
-    for command in ("start", "home", "repair"):
-        graph.node.create_subscription(Empty, f"/{command}", heard(command), 10)
-    graph.node.create_service(Trigger, "/robosc/report/arm", report)
+    worker = Worker(graph.node)
     try:
         graph.start(package)
         end = time.monotonic() + 60
         while time.monotonic() < end:
-            if due and due[0] <= time.monotonic():
-                due.pop(0)
-                arm["ends"] += 1
-                arm["at"] = "broken" if arm["ends"] % 2 else "done"
-                status.publish(Empty())
+            worker.step()
             graph.executor.spin_once(timeout_sec=0.01)
-        return {"commands wrong where the arm was": len(wrong), "tasks ended": arm["ends"],
-                "repairs": sent.count("repair"), "homes": sent.count("home")}
+        return {"commands wrong where the arm was": len(worker.wrong), "tasks ended": worker.ends,
+                "repairs": worker.sent.count("repair"), "homes": worker.sent.count("home")}
     finally:
         graph.close()
 
@@ -394,22 +367,11 @@ def two_outcomes(package: tuple[Path, str], work: Path) -> dict[str, Any]:
 def storage(package: tuple[Path, str], work: Path, how: str) -> dict[str, Any]:
     """The maze solver's node for 3 s under a read-only ROS_HOME (``how`` "read-only") or with
     ROS_HOME and the event log on a full disk ("full"), then stopped with SIGINT."""
-    disk = work / "disk"
-    disk.mkdir(parents=True, exist_ok=True)
-    options = "ro" if how == "read-only" else "size=64k"
-    subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(disk)], check=True)
     graph = Graph(work)
-    before = {n for n in os.listdir("/dev/shm") if n.startswith("robosc-fastdds")}
+    before = disks.profiles()
+    place = disks.mounted(work / "disk", "ro") if how == "read-only" else disks.full(work / "disk")
     try:
-        if how == "full":
-            (disk / "log").mkdir()
-            handle = os.open(disk / "filler", os.O_WRONLY | os.O_CREAT)
-            with contextlib.suppress(OSError):
-                while os.write(handle, b"\0" * 4096):
-                    pass
-            os.close(handle)
-        output = work / "node.txt"
-        with open(output, "wb") as out:
+        with place as disk, open(work / "node.txt", "wb") as out:
             folder, module = package
             env = {**graph.env, "ROS_HOME": str(disk), "PYTHONPATH": str(folder)}
             env.pop("ROS_LOG_DIR", None)
@@ -419,12 +381,11 @@ def storage(package: tuple[Path, str], work: Path, how: str) -> dict[str, Any]:
             alive = node.poll() is None
             node.send_signal(signal.SIGINT)
             status = node.wait(20)
-        text = output.read_text(errors="replace")
-        left = {n for n in os.listdir("/dev/shm") if n.startswith("robosc-fastdds")} - before
+        text = (work / "node.txt").read_text(errors="replace")
+        left = disks.profiles() - before
         return {"ran": alive, "exit status": status, "tracebacks": text.count("Traceback"), "profiles left in /dev/shm": len(left)}
     finally:
         graph.close()
-        subprocess.run(["umount", "-l", str(disk)], check=False)
 
 
 def answered_once(log: Path, received: Any, sent: Any) -> dict[str, Any]:

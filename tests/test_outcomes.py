@@ -10,7 +10,6 @@ from __future__ import annotations
 import random
 import time
 from pathlib import Path
-from typing import Any
 
 import pytest
 
@@ -19,6 +18,7 @@ from robosc.debug.simulator import CommandError, Simulator, load_module
 from robosc.runtime.onboard.claims import CLAIM_WAIT
 from ros_support import Ros2, build_package
 from test_belief import Node
+from worker_stand_in import Worker
 
 ROOT = Path(__file__).resolve().parent.parent
 MODEL = ROOT / "docs/models/outcomes.rscd"
@@ -144,45 +144,13 @@ def test_ros2_a_worker_that_breaks_down_is_repaired_and_one_that_is_done_sent_ho
     (before: home after every status, repair never). With ``confirm_answers`` false: the node
     does not doubt status as a possible second copy (that would ask the driver too), so only the
     two outcomes make it ask."""
-    from std_msgs.msg import Empty
-    from std_srvs.srv import Trigger
-
     package = build_package(MODEL.relative_to(ROOT), 2, "controller", tmp_path)
-    arm = {"at": "idle", "ends": 0}
-    wrong: list[str] = []
-    sent: list[str] = []
-    due: list[float] = []
-    status = ros2.node.create_publisher(Empty, "/status", 10)
-
-    def heard(command: str) -> Any:
-        def take(_: Any) -> None:
-            sent.append(command)
-            ready = {"start": "idle", "home": "done", "repair": "broken"}[command]
-            if arm["at"] != ready:
-                wrong.append(f"{command} while the arm is {arm['at']}")
-            arm["at"] = "working" if command == "start" else "idle"
-            if command == "start":
-                due.append(time.monotonic() + 0.2)
-
-        return take
-
-    for command in ("start", "home", "repair"):
-        ros2.node.create_subscription(Empty, f"/{command}", heard(command), 10)
-
-    def report(_: Any, response: Any) -> Any:
-        response.success, response.message = True, arm["at"]
-        return response
-
-    ros2.node.create_service(Trigger, "/robosc/report/arm", report)
+    worker = Worker(ros2.node)
     ros2.start(package, confirm_answers=False)
 
     def work() -> bool:
-        if due and due[0] <= time.monotonic():
-            due.pop(0)
-            arm["ends"] += 1
-            arm["at"] = "broken" if arm["ends"] % 2 else "done"
-            status.publish(Empty())
-        return sent.count("repair") >= 2 and sent.count("home") >= 2
+        worker.step()
+        return worker.sent.count("repair") >= 2 and worker.sent.count("home") >= 2
 
-    assert ros2.spin_until(work, 60), (sent, ros2.processes.output()[-3000:])
-    assert wrong == [], wrong
+    assert ros2.spin_until(work, 60), (worker.sent, ros2.processes.output()[-3000:])
+    assert worker.wrong == [], worker.wrong

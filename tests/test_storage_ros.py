@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 
+import disks
 from ros_support import ROS1_PYTHON, Ros1, Ros2, build_package, unavailable, wait_until
 
 MODEL = "examples/maze_solver.rscd"
@@ -23,33 +24,20 @@ RUNNING = "robosc supervisor of MazeSolver running"
 
 @contextlib.contextmanager
 def mounted(folder: Path, options: str) -> Iterator[Path]:
-    """A tmpfs at ``folder`` with mount ``options`` (``ro``; ``size=64k``), unmounted afterwards."""
-    folder.mkdir(parents=True, exist_ok=True)
-    made = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(folder)], capture_output=True, text=True)
-    if made.returncode != 0:
-        unavailable(f"a tmpfs mount ({made.stderr.strip()}: the test needs root)")
     try:
-        yield folder
-    finally:
-        subprocess.run(["umount", "-l", str(folder)], check=False)
+        with disks.mounted(folder, options) as disk:
+            yield disk
+    except disks.CannotMount as error:
+        unavailable(f"a tmpfs mount ({error})")
 
 
 @contextlib.contextmanager
 def full(folder: Path) -> Iterator[Path]:
-    """A 64 KiB tmpfs with no byte left (a ``log`` folder made first, as ROS would find it)."""
-    with mounted(folder, "size=64k") as disk:
-        (disk / "log").mkdir()
-        handle = os.open(disk / "filler", os.O_WRONLY | os.O_CREAT)
-        with contextlib.suppress(OSError):
-            while os.write(handle, b"\0" * 4096):
-                pass
-        os.close(handle)
-        yield disk
-
-
-def profiles() -> set[str]:
-    """The Fast DDS profiles robosc's nodes wrote to /dev/shm."""
-    return {name for name in os.listdir("/dev/shm") if name.startswith("robosc-fastdds")}
+    try:
+        with disks.full(folder) as disk:
+            yield disk
+    except disks.CannotMount as error:
+        unavailable(f"a tmpfs mount ({error})")
 
 
 def ended(process: subprocess.Popen[bytes], log: Path) -> str:
@@ -79,7 +67,7 @@ def test_ros2_a_read_only_ros_home_starts_the_node_logging_to_the_console(ros2: 
     """Before: rclpy's raw traceback at start (failed to initialize logging), and the node's Fast
     DDS profile left in /dev/shm."""
     package = build_package(MODEL, 2, "controller", tmp_path)
-    before = profiles()
+    before = disks.profiles()
     with mounted(tmp_path / "home", "ro") as home:
         env = {**ros2.env, "ROS_HOME": str(home), "PYTHONPATH": str(package)}
         env.pop("ROS_LOG_DIR", None)
@@ -89,7 +77,7 @@ def test_ros2_a_read_only_ros_home_starts_the_node_logging_to_the_console(ros2: 
     assert process.returncode == 0, output
     assert output.count("ROS cannot write its log files") == 1, output
     assert "Traceback" not in output
-    assert profiles() <= before
+    assert disks.profiles() <= before
 
 
 def test_ros2_a_full_disk_is_said_once_and_the_node_ends_cleanly(ros2: Ros2, tmp_path: Path) -> None:
