@@ -96,6 +96,19 @@ def test_ros2_a_full_disk_is_said_once_and_the_node_ends_cleanly(ros2: Ros2, tmp
     assert "Traceback" not in output and "OSError" not in output.replace("(OSError: [Errno 28]", ""), output
 
 
+def test_ros1_a_read_only_ros_home_leaves_the_node_running(ros1: Ros1, tmp_path: Path) -> None:
+    """rospy says it cannot make its log folder; the node runs and ends cleanly."""
+    package = build_package(MODEL, 1, "controller", tmp_path)
+    script = str(next((package / "scripts").glob("*_node")))
+    with mounted(tmp_path / "home", "ro") as home:
+        env = {**ros1.env, "ROS_HOME": str(home), "ROS_LOG_DIR": str(home / "log")}
+        process, log = started(ros1, [ROS1_PYTHON, script, "_wait_for_data:=false"], env, "read_only1")
+        assert process.poll() is None, log.read_text()
+        output = ended(process, log)
+    assert process.returncode == 0, output
+    assert RUNNING in output and "Traceback" not in output and "Logging error" not in output, output
+
+
 def test_ros1_a_full_disk_is_said_once_and_the_node_ends_cleanly(ros1: Ros1, tmp_path: Path) -> None:
     """rospy's log file on a full disk printed a traceback for each line it could not write (and
     at the end); now one line says so. (A read-only ROS_HOME: rospy warns, and the node runs.)"""

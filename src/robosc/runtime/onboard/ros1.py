@@ -87,7 +87,12 @@ class Goal(object):
         self.handle.cancel()
 
 
+_CONSOLE: List[bool] = []  # [True]: rospy could not set up its console output: lines go to stderr
+
+
 def _log(level: str, message: str) -> None:
+    if _CONSOLE:
+        print("[robosc] %s: %s" % (level, message), file=sys.stderr)
     if rospy.core.is_shutdown_requested():
         # shutting down, maybe for a node of the same name the master has taken instead: rospy's
         # logger would ask the master for a parameter as this node, and the master would shut the
@@ -130,6 +135,10 @@ def quiet_log_files() -> None:
         for handler in logger.handlers:
             if isinstance(handler, logging.FileHandler):
                 handler.handleError = failed  # type: ignore[method-assign]
+    console = [h for h in logging.getLogger("rosout").handlers if type(h).__name__ == "RosStreamHandler"]
+    if not console and not _CONSOLE:  # its log configuration could not be read or written (ROS_HOME read-only)
+        _CONSOLE.append(True)
+        print("[robosc] rospy could not set up its logging: the node's log lines go to standard error", file=sys.stderr)
 
 
 class SupervisorNode(NodeCore):
