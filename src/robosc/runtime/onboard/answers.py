@@ -142,19 +142,29 @@ class Answers(DataHealth):
             if (
                 answers is not None
                 and self.answered is not None
-                and not (self.confirm_answers and event.name in self.REPEATABLE)  # a copy proves nothing
+                and not self.may_repeat(event.name)  # a copy proves nothing
             ):
                 for field, locations in answers:
                     before, now = saved[index[field]], getattr(self, field)
                     if type(before) is str and type(now) is str and before in locations and now != before:
                         self.answered(field, locations)
-        if self.confirm_answers and event.name in self.REPEATABLE:
+        if self.may_repeat(event.name):
             self._doubt(event.name, saved)
         communication = event.communication
         if communication is not None and (self.waiting or self._unreadable_since):
             self._readable(communication)
         if self.observer is not None:
             self._record(event.name, False, value)
+
+    def may_repeat(self, name: str) -> bool:
+        """Whether the event ``name`` may be a second copy of an earlier answer (confirm_answers)."""
+        return self.confirm_answers and name in self.REPEATABLE
+
+    def doubt(self, component: str) -> None:
+        """``component`` was left unconfirmed by an answer or an event with several outcomes: the
+        node asks its driver at once."""
+        if component not in self.doubted:
+            self.doubted.append(component)
 
     def _doubt(self, name: str, saved: Any) -> None:
         """The answer ``name`` moved fields from their values in ``saved`` and may have been a second

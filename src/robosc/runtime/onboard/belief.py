@@ -294,7 +294,7 @@ class Belief(Outcomes):
         stay possible: an answer may be spurious or a duplicate, so it tells where a component
         is only where every place it may be leads to the same one."""
 
-        doubt = self.confirm_answers and event.name in self.REPEATABLE
+        doubt = self.may_repeat(event.name)
         befores: list[list[Any]] = []
 
         def run() -> Any:
@@ -329,8 +329,8 @@ class Belief(Outcomes):
         if befores and self._settles_as_it_is(states):  # a copy, or an answer: the belief has both already
             for field, _ in self.ANSWERS[event.name]:  # but something may have changed: ask at once
                 component = self.COMPONENT_OF[field]
-                if field in self.unconfirmed and component not in self.doubted:
-                    self.doubted.append(component)
+                if field in self.unconfirmed:
+                    self.doubt(component)
             return self.ignore(event.name, "it changes nothing the node believes (it may be a second copy)")
         self._settle_fields(states)
         self._delivered(event, value, saved, stamp)
@@ -373,5 +373,4 @@ class Belief(Outcomes):
         self.unconfirm(fields, why)
         for component in components:
             self.why[component] = why
-            if component not in self.doubted:
-                self.doubted.append(component)
+            self.doubt(component)

@@ -45,8 +45,7 @@ class Outcomes(Answers):
         component = self.COMPONENT_OF.get(field, self.LABELS[field])
         self.unconfirm({field: outcomes}, "%s may be %s (an event with several outcomes)" % (
             self.LABELS[field], " or ".join(map(str, distinct(list(outcomes))))))
-        if component not in self.doubted:
-            self.doubted.append(component)
+        self.doubt(component)
 
     def outcomes(self, name: str, value: Any = None) -> Dict[str, Tuple[Any, ...]]:
         """Where the event ``name`` (with ``value``, its data as the event's method takes it) would
