@@ -17,11 +17,15 @@ the generated coordinator module (the same module and dispatcher the ROS node ru
   it" (the model's requirements without what synthesis added), first come first served: the
   same policy, the robot waiting longest first (Open-RMF's reservations, openTCS's blocks);
 * **bound**: the world's physical bound, from each robot driving its task alone (no other
-  robot moving, no person, the door open): tasks per hour <= 3600 N / max(the longest lone
-  task, the busiest one-robot zone's occupancy per round of N tasks). A zone takes one robot at
-  a time: each cell (each fits one robot) and, in the warehouse, the whole aisle (a dead end
+  robot moving, no person, the door open): no run of K tasks per robot can end sooner than
+  K times the longest lone task, nor sooner than any zone that takes one robot at a time lets
+  it. A zone is a cell (each fits one robot) or, in the warehouse, the whole aisle (a dead end
   one robot wide: robots cannot pass each other in it, so one robot at a time does its task
-  there). Every run must take at least that long whatever coordinates it.
+  there). A zone's time: the quickest way into it from a home, every task's lone time in it
+  one after another, and the quickest way from it to a task's end; in the warehouse plus the
+  time the person stands in the aisle (where the model lets nobody pass them) less twice the
+  aisle's longest leg (what robots can still do meanwhile). Tasks per hour <= 3600 N K / the
+  longest of these. Every run must take at least that long whatever coordinates it.
 
 Per run: tasks per simulated hour and its share of the bound, the wait per task (the time from
 a task's assignment to its end beyond the same robot's lone time: what sharing cost it) mean and
@@ -89,16 +93,25 @@ def modules(result: Any) -> dict[str, Any]:
     return {"robosc": supervised, "random": supervised, "reservation": load_module(plan_supervisor(rule(result)))}
 
 
-def lone(world: Any, module: Any, robots: int) -> tuple[list[float], list[Counter[str]]]:
-    """Each robot driving its task alone (the others at home, no person, the door open): its
-    time and its seconds in each cell (and in the warehouse's aisle)."""
+class Lone:
+    """One robot's task driven alone (the others at home, no person, the door open)."""
+
+    def __init__(self) -> None:
+        self.time = 0.0  # the whole task
+        self.inside: Counter[str] = Counter()  # seconds in each cell (and in the warehouse's aisle)
+        self.first: dict[str, float] = {}  # seconds from the start until it first enters each zone
+        self.after: dict[str, float] = {}  # seconds from last leaving each zone until the task ends
+        self.legs: list[float] = []  # each leg's seconds
+        self.legs_inside: dict[str, float] = {}  # each zone: its longest leg that ends in it
+
+
+def lone(world: Any, module: Any, robots: int) -> list[Lone]:
+    """Each robot driving its task alone: what :class:`Lone` holds."""
     from robosc.sim.fleet import FleetWorld, instances
 
     quiet = replaced(world, fleet=replaced(world.fleet, person=None))
     names = instances(module)[:robots]
-    times: list[float] = []
-    zones: list[Counter[str]] = []
-    legs = len(world.fleet.task_of(0))
+    out: list[Lone] = []
     for k, name in enumerate(names):
         fw = FleetWorld(quiet, names)
         if fw.door is not None:
@@ -106,40 +119,79 @@ def lone(world: Any, module: Any, robots: int) -> tuple[list[float], list[Counte
             while fw.door.state != "open":
                 fw.step()
         start = fw.sim.time
-        inside: Counter[str] = Counter()
-        legs = len(world.fleet.task_of(k))
-        for _ in range(legs):
+        alone = Lone()
+        last: dict[str, float] = {}
+        for _ in range(len(world.fleet.task_of(k))):
+            began = fw.sim.time
             fw.command(f"{name}.go")
             while True:
                 said = [answer for answer, _ in fw.step()]
                 pose = fw.sim.bodies[k].pose
                 cell = fw.fleet.cell(pose.x, pose.y)
-                if cell:
-                    inside[cell] += fw.sim.world.step
-                    if cell in AISLE:
-                        inside["aisle"] += fw.sim.world.step
+                zones = [cell] + (["aisle"] if cell in AISLE else []) if cell else []
+                for zone in zones:
+                    alone.inside[zone] += fw.sim.world.step
+                    alone.first.setdefault(zone, fw.sim.time - start)
+                    last[zone] = fw.sim.time
                 if f"{name}.arrived" in said:
                     break
                 if f"{name}.stopped" in said:
                     fw.command(f"{name}.go")
                 if fw.sim.time - start > 3600:
                     raise RuntimeError(f"{name} alone did not finish its task")
-        times.append(fw.sim.time - start)
-        zones.append(inside)
-    return times, zones
+            alone.legs.append(fw.sim.time - began)
+            for zone in zones:
+                alone.legs_inside[zone] = max(alone.legs_inside.get(zone, 0.0), fw.sim.time - began)
+        alone.time = fw.sim.time - start
+        alone.after = {zone: alone.time - (at - start) for zone, at in last.items()}
+        out.append(alone)
+    return out
 
 
-def bound(world_name: str, times: list[float], zones: list[Counter[str]]) -> tuple[float, str]:
-    """Tasks per hour no coordinator can beat, and what limits it."""
-    robots = len(times)
-    limits = {"the longest lone task": max(times)}
-    cells = {cell for z in zones for cell in z if cell not in ("aisle", "depot")}
+def person_stay(world: Any, module: Any, robots: int) -> float:
+    """Seconds the world's person spends in the warehouse's aisle cells c1 .. c3, where no robot
+    may pass (the model keeps robots out of the person's cell and the cells next to it): the
+    person walking their way alone, the robots at home."""
+    from robosc.sim.fleet import FleetWorld, instances
+
+    if world.fleet.person is None:
+        return 0.0
+    fw = FleetWorld(world, instances(module)[:robots])
+    walker = fw.sim.walker
+    stay = 0.0
+    while not walker.done and fw.sim.time < 3600:
+        fw.step()
+        if fw.person_cell in AISLE[:3]:
+            stay += fw.sim.world.step
+    return stay
+
+
+def bound(world_name: str, tasks: int, alone: list[Lone], stay: float) -> tuple[float, str]:
+    """Tasks per hour no coordinator can beat in a run of ``tasks`` tasks per robot, and what
+    limits it: the run takes at least as long as
+
+    * each robot's tasks one after another, alone (``tasks`` times its lone task), and
+    * for each zone that takes one robot at a time (each cell, one robot each; in the warehouse
+      the whole aisle, a dead end one robot wide where robots cannot pass each other): the
+      quickest way into it from a home, then every task's lone time in it one after another,
+      then the quickest way from it to the end of a task; in the warehouse, plus the time the
+      person stands in the aisle (``stay``) less what robots can still do in it meanwhile (at
+      most a leg under way and one leg into the shelf: twice its longest leg)."""
+    robots = len(alone)
+    limits = {"the longest lone task, one after another": tasks * max(a.time for a in alone)}
+    cells = {cell for a in alone for cell in a.inside if cell not in ("aisle", "depot")}
     if world_name == "warehouse":
         cells = {"aisle"}
-    for cell in cells:  # one robot at a time: a round of one task per robot takes at least this
-        limits[f"{cell} (one robot at a time)"] = sum(z[cell] for z in zones)
+    for cell in cells:
+        used = [a for a in alone if cell in a.inside]
+        serial = tasks * sum(a.inside[cell] for a in used)
+        ramps = min(a.first[cell] for a in used) + min(a.after[cell] for a in used)
+        blocked = 0.0
+        if world_name == "warehouse" and stay > 0:
+            blocked = max(0.0, stay - 2 * max(a.legs_inside.get(cell, 0.0) for a in used))
+        limits[f"{cell} (one robot at a time)"] = ramps + serial + blocked
     what = max(limits, key=lambda k: limits[k])
-    return 3600.0 * robots / limits[what], what
+    return 3600.0 * robots * tasks / limits[what], what
 
 
 def run(world: Any, module: Any, robots: int, tasks: int, policy: str, lone_time: float, seed: int = 0) -> dict[str, Any]:
@@ -172,8 +224,9 @@ def rows(names: list[str], sizes: list[int], tasks: int) -> Any:
             world, result = made
             each = tasks * (SWAPS if name == "swap" else 1)
             built = modules(result)
-            times, zones = lone(world, built["robosc"], robots)
-            limit, what = bound(name, times, zones)
+            alone = lone(world, built["robosc"], robots)
+            times = [a.time for a in alone]
+            limit, what = bound(name, each, alone, person_stay(world, built["robosc"], robots) if name == "warehouse" else 0.0)
             yield name, robots, each, "bound", {"limit": limit, "what": what, "times": times}
             for who in ("robosc", "random", "reservation"):
                 policy = "random" if who == "random" else "purpose"

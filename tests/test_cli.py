@@ -223,7 +223,7 @@ def test_a_counted_fleet_is_explained_once_for_its_robots_and_in_json() -> None:
     data = json.loads(run("synthesize", "--json", warehouse).stdout)
     why = {e["event"]: e["why"] for e in data["events"] if e["why"] is not None}
     assert sorted(why) == ["bot1.go", "bot2.go", "bot3.go"]
-    assert all(w["note"].startswith("the same for every robot of bot") and len(w["path"]) == 6 for w in why.values())
+    assert all(w["note"].startswith("the same for every robot of bot") and len(w["path"]) == 10 for w in why.values())
 
 
 def test_explicit_synthesis_compares_a_counted_fleet_orbit_by_orbit_and_says_they_agree() -> None:

@@ -94,7 +94,7 @@ def test_shelf_picker_without_unload_recovery_points_at_the_unhandled_error():
 def test_warehouse_fleet_is_set_in_one_line_and_synthesis_lets_one_robot_into_the_aisle():
     """examples/warehouse.rscd: the fleet's size is the count of one component; two robots in
     the narrow aisle can block each other in front of the shelf, so synthesis lets a robot in
-    only while every other one is at the depot or charging, whatever the size."""
+    from beside the doorway only while no other robot is deeper in the aisle, whatever the size."""
     from robosc.api import check_text, synthesize_model
     from robosc.synthesis.options import SynthesisOptions
 
@@ -108,9 +108,13 @@ def test_warehouse_fleet_is_set_in_one_line_and_synthesis_lets_one_robot_into_th
         assert counted.ok and mono.ok and counted.method == "symmetric"
         assert [g.event.name for g in counted.added_guards] == [f"bot{i}.go" for i in range(1, n + 1)]
         assert [g.event.name for g in mono.added_guards] == [f"bot{i}.go" for i in range(1, n + 1)]
-        # the door alone is never restricted further; bot1 may enter only when all others are home
+        # the door alone is never restricted further; bot1 beside the doorway may enter only when
+        # no other robot is deeper in the aisle; to the place beside the doorway it may always go
         for result in (counted, mono):
-            assert result.allows("bot1.go", result.state({"Door": "open"}))
-            assert not result.allows("bot1.go", result.state({"Door": "open", "bot2": "out2"}))
-            assert result.allows("bot1.go", result.state({"Door": "open", "bot2": "charging"}))
-            assert not result.allows("bot1.go", result.state({"Door": "closed"}))
+            assert result.allows("bot1.go", result.state({"Door": "open", "bot1": "out0"}))
+            assert not result.allows("bot1.go", result.state({"Door": "open", "bot1": "out0", "bot2": "out2"}))
+            assert not result.allows("bot1.go", result.state({"Door": "open", "bot1": "out0", "bot2": "back3"}))
+            assert result.allows("bot1.go", result.state({"Door": "open", "bot1": "out0", "bot2": "charging"}))
+            assert result.allows("bot1.go", result.state({"Door": "open", "bot1": "out0", "bot2": "back0"}))
+            assert not result.allows("bot1.go", result.state({"Door": "closed", "bot1": "out0"}))
+            assert result.allows("bot1.go", result.state({"Door": "closed", "bot2": "out2"}))

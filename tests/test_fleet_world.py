@@ -93,7 +93,8 @@ def test_the_warehouse_worlds_have_a_home_per_robot_and_each_waypoint_in_its_cel
     fleet = world.fleet
     assert fleet is not None
     assert {n: fleet.cell(*p) for n, p in fleet.waypoints} == {
-        "door": "depot", "c1": "c1", "c2": "c2", "c3": "c3", "shelf": "shelf"}
+        "wait_lane": "depot", "wait": "depot", "past": "depot", "past_lane": "depot",
+        "c1": "c1", "c2": "c2", "c3": "c3", "shelf": "shelf"}
     for i in range(homes):  # every home and lane point in the depot, a robot's width apart
         start = world.start(i)
         assert fleet.cell(start.x, start.y) == "depot" and fleet.cell(*fleet.point("lane", start)) == "depot"
@@ -102,13 +103,28 @@ def test_the_warehouse_worlds_have_a_home_per_robot_and_each_waypoint_in_its_cel
     assert fleet.charger is not None and fleet.cell(*fleet.charger.at) == "depot"
 
 
+def test_where_a_robot_is_says_the_point_its_next_leg_ends_at_and_what_it_drives_into() -> None:
+    world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"])
+    assert world.whereabouts(0) == "bot1 in depot (idle, its next move to wait, in depot)"
+    world.drivers[0].leg = 1
+    assert world.whereabouts(0) == "bot1 in depot (idle, its next move to c1)"
+    world.command("bot1.go")
+    world.step()
+    assert re.fullmatch(r"bot1 in depot \(driving into c1, [\d.]+ m from \(4\.4, 3\.3\)\)", world.whereabouts(0))
+
+
 def test_a_closed_door_is_in_the_lidars_way_a_robot_stops_before_it() -> None:
     """A robot told to go while the door is closed (no coordinator: the world alone) sees the
     door with its LiDAR, stops short of it and says `stopped`; once the door has opened and it is
     told to go on, it drives through and arrives, without touching it."""
     world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"])
-    world.command("bot1.go")
+    world.command("bot1.go")  # to the place beside the doorway
     said: list[str] = []
+    while not said and world.sim.time < 60:
+        said = [name for name, _ in world.step() if name.startswith("bot1.")]
+    assert said == ["bot1.arrived"], (said, world.sim.time)
+    world.command("bot1.go")  # into the aisle, through the closed door
+    said = []
     while not said and world.sim.time < 60:
         said = [name for name, _ in world.step() if name.startswith("bot1.")]
     assert said == ["bot1.stopped"], (said, world.sim.time)
@@ -130,12 +146,12 @@ def test_a_closed_door_is_in_the_lidars_way_a_robot_stops_before_it() -> None:
     ("change", "line", "message"),
     [
         (("shared: true", "shared: false"), 31, "a fleet's world is shared: add 'shared: true'"),
-        (("    - [c2]\n", "    - [c9]\n"), 40, "unknown waypoint 'c9' (the waypoints, home, lane)"),
-        (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 34, "'home' is each robot's own: it cannot be a waypoint"),
-        (("[6.4, 3.3, 20]", "[6.4, 3.3, 20, 1]"), 63, "a point of the walk is [x, y] or [x, y, seconds standing there]"),
-        (("    speed: 0.6\n", "    speed: -1\n"), 58, "person speed"),
+        (("    - [c2]\n", "    - [c9]\n"), 44, "unknown waypoint 'c9' (the waypoints, home, lane)"),
+        (("    c1: [4.4, 3.3]\n", "    home: [4.4, 3.3]\n"), 37, "'home' is each robot's own: it cannot be a waypoint"),
+        (("[6.4, 3.3, 20]", "[6.4, 3.3, 20, 1]"), 68, "a point of the walk is [x, y] or [x, y, seconds standing there]"),
+        (("    speed: 0.6\n", "    speed: -1\n"), 63, "person speed"),
         (("  task:", "  tasks: [[[c1]]]\n  task:"), 31, "'task' (every robot's) or 'tasks' (one per robot), not both"),
-        (("  task:", "  tasks:"), 39, "a leg of the task (a list of waypoints) must be a list"),
+        (("  task:", "  tasks:"), 42, "a leg of the task (a list of waypoints) must be a list"),
     ],
 )
 def test_a_fleet_world_is_checked_with_file_line_and_column(

@@ -36,7 +36,7 @@ from robosc.sim.world import load_world
 ROOT = Path(__file__).resolve().parent.parent
 WORLD = ROOT / "examples/worlds/warehouse.yaml"
 MODEL = ROOT / "examples/warehouse.rscd"
-LEGS = 8  # the warehouse task's moves
+LEGS = 10  # the warehouse task's moves
 
 
 def logged(folder: Path) -> list[dict[str, object]]:

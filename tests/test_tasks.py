@@ -193,6 +193,32 @@ def test_the_door_opens_when_a_robot_needs_to_pass_and_only_then() -> None:
     assert loose.sent.count("open_door") > 3
 
 
+WORK = DOOR.replace(
+    "outgoing message arrived with type: none",
+    "outgoing message arrived with type: none\n        incoming message pick with type: none\n"
+    "        outgoing message picked with type: none",
+).replace(
+    "state away { on request to go goto returning }",
+    "state away { on request to pick goto picking }\n"
+    "            state picking { on response from picked goto full }\n"
+    "            state full { on request to go goto returning }",
+)
+
+
+def test_the_door_stays_open_while_the_fleet_works_and_closes_when_it_is_done() -> None:
+    """bot1 passes the door, picks (the door is needed by nobody meanwhile) and comes back: the
+    door stays open while its task is under way, instead of closing behind it and opening again,
+    and closes once the task is done."""
+    fleet = Fleet(WORK)
+    task = fleet.tasks.submit(["full", "home"], robot="bot1")
+    fleet.run(6)
+    assert fleet.sent == ["open_door", "bot1.go", "bot1.pick"] and fleet.where("bot1") == "picking"
+    fleet.robot.deliver("bot1.picked")
+    fleet.run(6)
+    assert task.state == DONE
+    assert fleet.sent == ["open_door", "bot1.go", "bot1.pick", "bot1.go", "close_door"]
+
+
 @pytest.mark.parametrize(
     ("stops", "robot", "why"),
     [
@@ -292,9 +318,9 @@ def test_a_fleet_node_takes_tasks_on_its_topic_and_publishes_the_queue() -> None
     assert last["tasks"][1]["why"].startswith("'shlf' is no location of bot")
     assert last["tasks"][2]["why"].startswith("a task in JSON could not be read")
     assert ("error", "task bad refused: " + last["tasks"][1]["why"]) in node.logs
-    node.cycle()  # assigned to bot2, whose way needs the door: it is opened
+    node.cycle()  # assigned to bot2, which drives to the place beside the doorway
     assert json.loads(node.queue_text())["tasks"][0]["by"] == "bot2"
-    assert [name for name, _ in node.published] == ["open_door"]
+    assert [name for name, _ in node.published] == ["bot2/go"]
     response = node.serve_queue(None, Message(None))
     assert response.success is True and json.loads(response.message)["counts"] == {
         "assigned": 1, "done": 0, "failed": 2, "queued": 0}

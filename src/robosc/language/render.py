@@ -64,6 +64,9 @@ def _shown(e: m.Expr) -> tuple[str, bool]:
     """``e`` as text, and whether that is an ``any`` / ``all`` over a group (read as a call)."""
     if not isinstance(e, m.Binary):
         return render(e), False
+    nobody = _nobody(e)
+    if nobody is not None:
+        return nobody
     over = _over_group(e) if e.over is not None else None
     if over is not None:
         return over, True
@@ -104,6 +107,19 @@ def _over_group(e: m.Binary) -> str | None:
         return None
     binder, template = body
     return f"{'any' if e.op == 'or' else 'all'}({binder} in {escape_name(group)}: {template})"
+
+
+def _nobody(e: m.Binary) -> tuple[str, bool] | None:
+    """A condition robosc made (synthesis: it has no place in a file; one a user wrote is shown
+    as written) ``count(q in bot: X) = 0`` as ``!any(q in bot: X)`` (read as one operand) and
+    ``count(q in bot: X) >= 1`` as ``any(q in bot: X)``; None for any other expression."""
+    if e.span.line or not (isinstance(e.left, m.Count) and isinstance(e.right, m.Literal) and (e.op, e.right.value) in (("=", 0), (">=", 1))):
+        return None
+    counted = _quantified(e.left)
+    if counted is None:
+        return None
+    some = "any" + counted[len("count"):]
+    return ("!" + some if e.op == "=" else some), True
 
 
 def _quantified(e: m.Count) -> str | None:

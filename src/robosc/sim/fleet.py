@@ -384,7 +384,8 @@ class FleetWorld:
 
     def whereabouts(self, i: int) -> str:
         """Where robot ``i`` is and what it waits for: its cell, what its driver does, the cell
-        its next leg ends in, and how far its next point is while it drives."""
+        its leg under way ends in and how far its next point is, or the point its next leg ends
+        at (and that point's cell)."""
         pose, driver = self.sim.bodies[i].pose, self.drivers[i]
         here = self.fleet.cell(pose.x, pose.y) or "no cell"
         told = f"{self.names[i]} in {here} ({driver.doing}"
@@ -393,9 +394,10 @@ class FleetWorld:
             told += f" into {self.fleet.cell(x, y) or 'no cell'}"
             x, y = driver.path[0]
             told += f", {math.hypot(x - pose.x, y - pose.y):.2f} m from ({x:g}, {y:g})"
-        elif driver.doing == "idle":
-            x, y = self.fleet.point(driver.task[driver.leg][-1], driver.home)
-            told += f", its next move into {self.fleet.cell(x, y) or 'no cell'}"
+        elif driver.doing == "idle":  # the point its next leg ends at, and that point's cell
+            point = driver.task[driver.leg][-1]
+            cell = self.fleet.cell(*self.fleet.point(point, driver.home)) or "no cell"
+            told += f", its next move to {point}" + ("" if cell == point else f", in {cell}")
         return told + ")"
 
     def waited(self) -> dict[str, float]:

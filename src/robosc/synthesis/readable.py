@@ -138,6 +138,29 @@ def _summed(enc: Encoding, u: BDD, care: BDD, support: set[str], sums: dict[Any,
     return None
 
 
+def _nobody(enc: Encoding, u: BDD, care: BDD) -> m.Expr | None:
+    """``u`` on ``care`` as "no robot of one group in any of some places", written as one sum
+    (``c_out2 + c_shelf + ... = 0``): the places ``u`` keeps empty (of those some state of
+    ``care`` has a robot in), where keeping them empty is all ``u`` asks; None where it is not
+    that. However many places, it is one condition, where taken apart counter by counter it is a
+    case for each way of sharing the robots out among the other places."""
+    for counters, _size in enc.network.totals:
+        empty = enc.true
+        kept: list[m.Variable] = []
+        for counter in counters:
+            zero = enc.holds(counter, 0)
+            if (care & ~zero) != enc.false and (u & care & ~zero) == enc.false:
+                kept.append(counter)
+                empty &= zero
+        if not kept or (care & empty & ~u) != enc.false:
+            continue
+        total: m.Expr = _ref(enc.field(kept[0]))
+        for counter in kept[1:]:
+            total = m.Binary("+", total, _ref(enc.field(counter)), m.INTEGER, NO_SPAN)
+        return m.Binary("=", total, m.Literal(0, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
+    return None
+
+
 def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, Any]) -> m.Expr:
     if (u & care) == enc.false:
         return FALSE
@@ -145,7 +168,9 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, 
         return TRUE
     u = cudd.restrict(u, care)
     support = enc.bdd.support(u)
-    summed = _summed(enc, u, care, support, sums) if enc.network.totals else None
+    summed = _nobody(enc, u, care) if enc.network.totals else None
+    if summed is None and enc.network.totals:
+        summed = _summed(enc, u, care, support, sums)
     if summed is not None:
         return summed
     position = next(i for i, f in enumerate(order) if support & set(f.bits))

@@ -14,7 +14,10 @@ allows, the one to send:
    given its task or sent such a command);
 3. else a command that brings a shared component (a door, a lift: a component that is no
    robot) nearer to a location where some robot's blocked step would be allowed;
-4. else a command that brings a shared component nobody needs back to its initial location.
+4. else, when no robot has a task, a command that brings a shared component back to its
+   initial location. While the fleet works a shared component stays where a robot last
+   needed it: a door that robots pass one after another stays open between them, instead of
+   closing behind each one and opening again when the next one comes out.
 
 Nothing else is sent: a robot without a task stays where it is if that is one of its marked
 locations, and else goes to the nearest one (its home). Every event chosen is one the
@@ -280,6 +283,8 @@ class Dispatcher(object):
         for component in self.shared:
             here = self._where(component)
             wanted = self._wanted(component, here, blocked) if blocked else set()
+            if not wanted and self.doing:
+                continue  # while the fleet works it stays where a robot last needed it
             rest = wanted or set([self.routes.route[component].initial])
             for step in self.routes.steps(component, here, rest):  # type: ignore[arg-type]
                 if step in names:

@@ -66,8 +66,10 @@ class Robots:
     """A run of the counted network followed with the fleet's robots: which robot is in which
     local state, and the fleet's state and events that go with each counted step."""
 
-    def __init__(self, supervisor: CountedSupervisor) -> None:
+    def __init__(self, supervisor: CountedSupervisor, replay: list[Agent] | None = None) -> None:
         self.supervisor = supervisor
+        self.moved: list[Agent] = []  # the robot that made each move, in turn
+        self.replay = list(replay) if replay is not None else None  # the robots to move, in turn
         self.network = supervisor.network
         fleet = supervisor.fleet
         self.where: dict[int, int] = {}  # agent (id) -> index of its local state
@@ -103,6 +105,9 @@ class Robots:
             wanted = self.agent(prefer)
             kept = self.agent(spare)
             agent = wanted if wanted in here else next((a for a in here if a is not kept), here[0])
+            if self.replay:
+                agent = self.replay.pop(0)
+            self.moved.append(agent)
             counts = [reached.values[self.counted_value[c]] for c in group.counters]
             for outcome in outcomes:  # the outcome that leads to the counts reached
                 self.where[id(agent)] = outcome.target
@@ -110,6 +115,16 @@ class Robots:
                     break
             event = self.back[id(agent)][outcomes[0].event]
         return event, self.state(reached)
+
+    def swapped(self, one: Agent, other: Agent) -> Robots | None:
+        """A new follower that moves ``other`` where this one moved ``one`` and the other way
+        round; None unless the two start in the same place (then they are alike: a run of one
+        is a run of the other)."""
+        start = Robots(self.supervisor)
+        if start.where[id(one)] != start.where[id(other)]:
+            return None
+        swap = {id(one): other, id(other): one}
+        return Robots(self.supervisor, [swap.get(id(a), a) for a in self.moved])
 
     def agent(self, event: Event | None) -> Agent | None:
         owner = self.supervisor.agent_of_event.get(event) if event is not None else None
@@ -175,10 +190,22 @@ def counted_why(supervisor: CountedSupervisor, event: Event) -> Restriction | No
     best = min(found, key=lambda r: len(r.run))
     network = supervisor.network
     robots = Robots(supervisor)
-    run = [robots.step(e, reached, spare=event) for e, reached in best.run]
-    state = robots.state(best.state)
-    restricted, after = robots.step(best.event, best.after, prefer=event)
-    consequence = [robots.step(e, reached) for e, reached in best.consequence]
+
+    def follow() -> tuple[list[tuple[Event, NetworkState]], NetworkState, Event, NetworkState, list[tuple[Event, NetworkState]]]:
+        run = [robots.step(e, reached, spare=event) for e, reached in best.run]
+        there = robots.state(best.state)
+        restricted, after = robots.step(best.event, best.after, prefer=event)
+        return run, there, restricted, after, [robots.step(e, reached) for e, reached in best.consequence]
+
+    run, state, restricted, after, consequence = follow()
+    mine, theirs = robots.agent(event), robots.agent(restricted)
+    if restricted is not event and mine is not None and theirs is not None:
+        # the robot of the run is another that started where event's robot did: the same run
+        # with the two swapped is event's own
+        alike_robots = robots.swapped(theirs, mine)
+        if alike_robots is not None:
+            robots = alike_robots
+            run, state, restricted, after, consequence = follow()
 
     def steps(path: list[tuple[Event, NetworkState]]) -> tuple[Step, ...]:
         return tuple(Step(e, describe(network, reached)) for e, reached in path)
