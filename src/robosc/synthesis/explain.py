@@ -13,7 +13,7 @@ from robosc.language.render import render
 from robosc.plant.network import Automaton, AutomatonKind, Event, EventKind, Network, Requirement
 from robosc.record import record
 from robosc.synthesis.encoding import BDD, Relation
-from robosc.synthesis.fixedpoints import closure, within
+from robosc.synthesis.fixedpoints import closure, reach, within
 from robosc.synthesis.result import Explanation, Fix, Step
 from robosc.synthesis.state import NetworkState
 
@@ -109,7 +109,7 @@ def explain_path(
             blocked_at |= leading_on[event]
         sources = fp.requirement_bad | (fp.bad & ~blocked_at)  # where badness starts
         if events is not uncontrollable:  # ... and is there, whatever the resting components do
-            sources = fp.requirement_bad | (sources & _required_moves(fp)[1])
+            sources = fp.requirement_bad | (sources & _required_moves(fp, start)[1])
         layers = layers_from(enc, start, (fp.relation[e] for e in events), within=fp.bad, until=sources)
         target = layers[-1] & sources
         if target != enc.false:
@@ -311,16 +311,29 @@ def fixes(fp: Any, state: NetworkState) -> list[Fix]:
     return found
 
 
-def _required_moves(fp: Any) -> tuple[list[tuple[Event, Relation]], BDD]:
+def _required_moves(fp: Any, near: BDD) -> tuple[list[tuple[Event, Relation]], BDD]:
     """Each event's transitions where the requirements allow it, and the states from which
-    no marked state can be reached over them at all (supervisor or not). Kept per result."""
+    no marked state can be reached over them at all (supervisor or not), told for the states
+    of ``near`` and what they lead to. Kept per result.
+
+    Those states are first looked for among the states the initial state leads to over these
+    moves and every uncontrollable event (where an explanation's states lie): closed under the
+    moves, so that a state there reaches a marked state over them exactly when it does within
+    them. Over every valid state, as before, only where ``near`` leaves them (a counted
+    warehouse of 16 robots: 6 s against 77)."""
+    enc = fp.enc
     if "required moves" not in fp.memo:
-        enc = fp.enc
         restricted = [(e, fp.relation[e].restrict(c.allowed)) for e in enc.network.events for c in fp.cases[e]]
-        dead = enc.valid() & ~closure(enc, fp.marked, (r for _, r in restricted))
-        fp.memo["required moves"] = (restricted, dead)
-    found: tuple[list[tuple[Event, Relation]], BDD] = fp.memo["required moves"]
-    return found
+        moves = [r for _, r in restricted] + [fp.relation[u] for u in enc.network.uncontrollable]
+        region = reach(enc, fp.initial, moves)
+        dead = region & ~within(enc, fp.marked & region, (r for _, r in restricted), enc.pre, region, "auto")
+        fp.memo["required moves"] = (restricted, region, dead)
+    restricted, region, dead = fp.memo["required moves"]
+    if (near & ~region) != enc.false:  # beyond them: over every valid state
+        if "required moves everywhere" not in fp.memo:
+            fp.memo["required moves everywhere"] = enc.valid() & ~closure(enc, fp.marked, (r for _, r in restricted))
+        dead = fp.memo["required moves everywhere"]
+    return restricted, dead
 
 
 def cut_way(fp: Any, state: NetworkState) -> tuple[list[tuple[Event, NetworkState]], Event, NetworkState, bool] | None:
@@ -331,7 +344,7 @@ def cut_way(fp: Any, state: NetworkState) -> tuple[list[tuple[Event, NetworkStat
     state it leads to, and whether that state is one no marked state can be reached from (else
     an uncontrollable event breaks a requirement there). None when the cut is further away."""
     enc = fp.enc
-    restricted, dead = _required_moves(fp)
+    restricted, dead = _required_moves(fp, fp.state(state))
     layers = layers_from(enc, fp.state(state), (r for _, r in restricted), until=fp.marked)
     if (layers[-1] & fp.marked) == enc.false:
         return None

@@ -22,3 +22,21 @@ def restriction(result: SynthesisResult, event: Event | str) -> Restriction | No
     if result.fixpoint is None:
         return None
     return why(result.fixpoint, found)
+
+
+def never_allows(result: SynthesisResult, event: Event) -> bool:
+    """Whether the supervisor allows ``event`` (controllable) in no state the controlled system
+    reaches: the one part of :func:`restriction` (its ``never``) that needs no explanation, so
+    that a caller looking for events never allowed explains only those (a counted warehouse of
+    16 robots: 60 s of explanations for none)."""
+    if not result.ok or not event.controllable:
+        return False
+    supervisor = result.supervisor
+    if isinstance(supervisor, CountedSupervisor):
+        fp = supervisor.fp
+        counted = [c for c in supervisor.counted_of(event) if c in fp.allowed]
+        return all((fp.allowed[c] & fp.reachable) == fp.enc.false for c in counted)
+    fp = result.fixpoint
+    if fp is None:
+        return False
+    return bool((fp.allowed[event] & fp.reachable) == fp.enc.false)

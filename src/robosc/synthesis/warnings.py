@@ -18,6 +18,7 @@ from robosc.synthesis.counting.supervisor import CountedSupervisor
 from robosc.synthesis.counting.translate import at_least
 from robosc.synthesis.fixedpoints import reach
 from robosc.synthesis.reached import reached_locations
+from robosc.synthesis.restrictions import never_allows
 from robosc.synthesis.restrictions import restriction as why_restricted
 from robosc.synthesis.result import Restriction, SynthesisResult
 
@@ -85,7 +86,7 @@ def never_allowed(result: SynthesisResult) -> list[Diagnostic]:
     places: set[Span] = set()
     for guard in result.added_guards:
         span = event_span(guard.event)
-        if span is None or span in places:
+        if span is None or span in places or not never_allows(result, guard.event):
             continue
         restriction = why_restricted(result, guard.event)
         if restriction is None or not restriction.never:
