@@ -36,7 +36,7 @@ def never_allows(result: SynthesisResult, event: Event) -> bool:
         fp = supervisor.fp
         counted = [c for c in supervisor.counted_of(event) if c in fp.allowed]
         return all((fp.allowed[c] & fp.reachable) == fp.enc.false for c in counted)
-    fp = result.fixpoint
-    if fp is None:
+    fixpoint = result.fixpoint
+    if fixpoint is None:
         return False
-    return bool((fp.allowed[event] & fp.reachable) == fp.enc.false)
+    return bool((fixpoint.allowed[event] & fixpoint.reachable) == fixpoint.enc.false)
