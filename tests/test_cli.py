@@ -267,3 +267,38 @@ def test_looking_for_bad_states_only_where_the_requirements_reach_gives_the_same
         said[forward] = (conditions, preimages.group(1))
     assert said["first"][0] == said["never"][0] == said["auto"][0]
     assert said["first"][1] != said["never"][1] and said["auto"] == said["first"]
+
+
+PRECEDENCE = """
+robot Prec {
+    component A {
+        incoming message go with type: none
+        behaviour {
+            initial marked state idle { on request to go goto busy }
+            marked state busy { on request to go goto idle }
+        }
+    }
+    component B {
+        incoming message run with type: none
+        behaviour {
+            initial marked state off { on request to run goto running }
+            marked state running { on request to run goto off }
+        }
+    }
+    requirement go needs B.running => A.idle and B.running
+}
+"""
+
+
+def test_a_warning_check_gives_is_given_by_every_command_that_acts_on_the_model(tmp_path: Path) -> None:
+    """`B.running => A.idle and B.running` reads as `(B.running => A.idle) and B.running`:
+    check warned, and synthesize, build and generate (and synthesize's JSON) said nothing."""
+    model = tmp_path / "prec.rscd"
+    model.write_text(PRECEDENCE)
+    said = f"{model}:17:26: warning: '=>' binds tighter than 'and'"
+    for args in (("check",), ("synthesize",), ("build", "-o", str(tmp_path / "out")),
+                 ("generate", "--ros", "2", "-o", str(tmp_path / "gen"))):
+        result = run(*args, str(model))
+        assert result.returncode == 0 and said in result.stdout + result.stderr, (args, result.stderr)
+    data = json.loads(run("synthesize", "--json", str(model)).stdout)
+    assert [w["code"] for w in data["warnings"]] == ["precedence"] and data["warnings"][0]["line"] == 17

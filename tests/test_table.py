@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import click
+import pytest
 
 from robosc.cli.table import Cell, boxed, listing
 
@@ -55,3 +56,27 @@ def test_a_listing_has_no_box_and_no_trailing_spaces() -> None:
         "Lidar                 sensing",
         "Lidar.safety          unsafe",
     ]
+
+
+def test_a_terminal_that_reports_no_width_gets_the_usual_80_columns(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A terminal of 0 columns (a serial console, some CI runners): before, `robosc synthesize`
+    ended with `internal error: ValueError: invalid width 0`."""
+    import fcntl
+    import os
+    import struct
+    import termios
+
+    from robosc.cli.table import terminal_width
+
+    monkeypatch.delenv("COLUMNS", raising=False)
+    leader, follower = os.openpty()
+    try:
+        with os.fdopen(follower, "w", closefd=False) as stream:
+            for columns, wanted in ((0, 80), (5, 80), (120, 120)):
+                fcntl.ioctl(follower, termios.TIOCSWINSZ, struct.pack("HHHH", 24, columns, 0, 0))
+                assert terminal_width(stream) == wanted
+                lines = click.unstyle(boxed(HEADERS, ROWS, no_wrap=(0,), width=terminal_width(stream))).splitlines()
+                assert all(len(line) <= wanted for line in lines)
+    finally:
+        os.close(leader)
+        os.close(follower)

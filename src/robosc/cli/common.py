@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from robosc.language.diagnostics import Diagnostic
 from robosc.language.model import Model
 
 if TYPE_CHECKING:
@@ -96,22 +97,31 @@ def input_problem(message: str) -> click.exceptions.Exit:
 
 
 def load_robot(
-    file: str, include: tuple[str, ...], purpose: str, sizes: Mapping[str, int] | None = None
+    file: str,
+    include: tuple[str, ...],
+    purpose: str,
+    sizes: Mapping[str, int] | None = None,
+    warnings: list[Diagnostic] | None = None,
 ) -> Model:
     """The checked robot model in ``file`` (``sizes``: --instances), or the command ends: exit 2
     when the file cannot be read or holds a library, exit 1 (diagnostics printed) when it has
-    errors."""
-    from robosc.api import InputError, ModelError, load_model
+    errors. ``warnings``: a list the check's warnings are added to, for the command to say
+    (a ``=>`` that binds otherwise than it reads: what ``robosc check`` says, the commands that
+    act on the model say too); None leaves them out."""
+    from robosc.api import InputError, check_file
 
     try:
-        model = load_model(file, include, sizes)
+        checked = check_file(file, include, sizes)
     except InputError as exc:
         raise input_problem(str(exc)) from None
-    except ModelError as exc:
-        click.echo(exc.result.render(width(err=True)), err=True)
+    if checked.model is None:
+        click.echo(checked.render(width(err=True)), err=True)
         raise exit_with(EXIT_MODEL_ERRORS) from None
+    model = checked.model
     if model.kind != "robot":
         raise input_problem(f"{file} is a library; {purpose} needs a robot")
+    if warnings is not None:
+        warnings += [d for d in checked.diagnostics if not d.is_error]
     return model
 
 

@@ -93,7 +93,7 @@ def generate(
     file: str, ros: str, mode: str, output: str, relative_names: bool, include: tuple[str, ...], sizes: dict[str, int]
 ) -> None:
     """Generate a ROS package running the synthesized supervisor."""
-    result, plan = supervised(file, include, "code generation", sizes)
+    result, plan = supervised(file, include, "code generation", sizes, warn=True)
     written = _write_package(plan, int(ros), mode, Path(output), file, include, live_page(result), relative_names)
     say(f"wrote ROS {ros} package ({mode}) to {output}: {len(written)} files")
     raise exit_with(EXIT_OK)
@@ -115,7 +115,7 @@ def build(
     from robosc.codegen.module import RUNTIME_PACKAGE, module_name, render_module, runtime_files
     from robosc.codegen.ros import package_name
 
-    result, plan = supervised(file, include, "a build", sizes)
+    result, plan = supervised(file, include, "a build", sizes, warn=True)
     out = Path(output)
     say(
         f"{plan.robot}: supervisor synthesized in {result.seconds:.3f} s, "

@@ -233,11 +233,13 @@ def print_finish(finish: Finish, enforced: bool = False) -> None:
 
 
 def supervised(
-    file: str, include: tuple[str, ...], purpose: str, sizes: Mapping[str, int] | None = None
+    file: str, include: tuple[str, ...], purpose: str, sizes: Mapping[str, int] | None = None, warn: bool = False
 ) -> tuple[SynthesisResult, Plan]:
     """Load, synthesize and lay out ``file``; the command ends with exit 1 (and the reason
-    printed) when no supervisor exists."""
-    model = load_robot(file, include, purpose, sizes)
+    printed) when no supervisor exists. ``warn``: say the check's warnings first."""
+    checked: list[Diagnostic] = []
+    model = load_robot(file, include, purpose, sizes, checked if warn else None)
+    print_warnings(checked)
     with synthesis_running() as progress:
         result = synthesize_model(model, progress=progress)
     if not result.ok:

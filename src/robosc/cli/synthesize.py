@@ -17,6 +17,7 @@ from robosc.cli.common import (
     synthesis_running,
 )
 from robosc.cli.results import as_json, finish_json, print_finish, print_result, print_warnings
+from robosc.language.diagnostics import Diagnostic
 from robosc.plant.show import show_network as network_listing
 from robosc.synthesis.options import (
     EDGE_ORDERS,
@@ -123,7 +124,10 @@ def synthesize(
 ) -> None:
     """Synthesize the supervisor of a model: for each controllable event, your condition
     and the condition synthesis added. Exits 1 (and explains why) when no supervisor exists."""
-    model = load_robot(file, include, "synthesis", sizes)
+    checked: list[Diagnostic] = []
+    model = load_robot(file, include, "synthesis", sizes, checked)
+    if not as_json_output:
+        print_warnings(checked)
     options = SynthesisOptions(order, reorder, fleet, edges, explore, forward)
     comparison = None
     if explicit:
@@ -150,6 +154,7 @@ def synthesize(
         click.echo()
     warnings = synthesis_warnings(result)
     if as_json_output:
+        warnings = checked + warnings
         import json
 
         data = as_json(result, warnings)

@@ -35,9 +35,12 @@ def terminal_width(stream: Any = None) -> int | None:
     if isatty is None or not isatty():
         return None
     try:
-        return os.get_terminal_size(stream.fileno()).columns
+        columns_now = os.get_terminal_size(stream.fileno()).columns
     except (OSError, ValueError):
         return 80
+    # a terminal that reports no width (0 columns: a serial console, some CI runners) or one
+    # too narrow for a table: the usual 80
+    return columns_now if columns_now >= 2 * _MIN_WIDTH else 80
 
 
 def _wrap(text: str, width: int) -> list[str]:
