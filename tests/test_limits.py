@@ -53,7 +53,7 @@ def fifo(tmp: Path) -> list[str]:
     return ["pipe.rscd"]
 
 
-CONJUNCTION = " and ".join(["b"] * 102)
+SUM = " + ".join(["n"] * 102)
 CASES = {
     "huge range": (["synthesize"], write("m.rscd", model_with("integer(0..1000000000)")), 1, "at most 65536 values"),
     "range of 10^18": (
@@ -69,11 +69,17 @@ CASES = {
         "(5000 digits) is too large",
     ),
     "5 MB string": (["check"], write("m.rscd", model_with("string", f'n = "{"x" * 5_000_000}"')), 1, "string too long"),
-    "102 conjuncts": (
+    "102 terms summed": (
         ["check"],
-        write("m.rscd", model_with("boolean", CONJUNCTION).replace("= 0", "= false")),
+        write("m.rscd", model_with("integer(0..3)", SUM + " > 1")),
         1,
-        "(102 operands joined by 'and' in a row)",
+        "(102 operands joined by '+' in a row)",
+    ),
+    "101 parentheses": (
+        ["check"],
+        write("m.rscd", model_with("boolean", "(" * 101 + "b" + ")" * 101).replace("= 0", "= false")),
+        1,
+        "expression nested more than 100 levels deep",
     ),
     "robot named _Hidden": (
         ["check"],
@@ -133,6 +139,20 @@ def test_input_has_a_clean_limit(tmp_path: Path, command: list[str], setup, code
     assert result.returncode == code, result.stderr[-2000:]
     assert message in result.stderr
     assert "Traceback" not in result.stderr and "internal error" not in result.stderr
+
+
+def test_a_long_run_of_and_or_or_is_one_condition_not_a_deep_one(tmp_path: Path) -> None:
+    """`b and b and ...` 5,000 times, `or` likewise: as users write a condition on every robot
+    of a fleet. Before: refused from 51 operands ('expression more than 100 levels deep (102
+    operands joined by 'and' in a row)'); now it is checked, written back as written, and the
+    simulator evaluates it."""
+    for op in ("and", "or"):
+        condition = f" {op} ".join(["n = 1"] * 5000)
+        files = write("m.rscd", model_with("integer(0..3)", condition))(tmp_path)
+        result = robosc("check", *files, cwd=tmp_path)
+        assert result.returncode == 0 and "ok" in result.stdout, result.stderr[-2000:]
+        formatted = robosc("fmt", *files, cwd=tmp_path)
+        assert formatted.returncode == 0 and condition in " ".join(formatted.stdout.split()), formatted.stderr
 
 
 def test_special_files_and_deep_json_elsewhere(tmp_path: Path) -> None:

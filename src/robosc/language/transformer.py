@@ -19,7 +19,9 @@ MAX_INT = 2**63 - 1
 MAX_STRING = 65536
 MAX_NAME = 100  # names become package, node and file names (diagrams: plant_<component>_<comm>.svg)
 MAX_EXPRESSION_DEPTH = 100  # the depth of an expression tree: later stages recurse over it, and
-# generated Python code nests it in parentheses (CPython reads at most 200 levels)
+# generated Python code nests it in parentheses (CPython reads at most 200 levels); a run of one
+# associative operator is a balanced tree (Transformer._run), so it counts a few levels
+ASSOCIATIVE = ("and", "or")
 
 
 class SyntaxProblem(Exception):
@@ -53,6 +55,11 @@ class SyntaxBuilder:
         self.lines, self.offset = lines, offset
         self._depth: dict[int, int] = {}
         self._chain: dict[int, int] = {}
+        # a run of one associative operator (`a or b or c ...`) as it grows: the perfect trees
+        # of its operands so far, biggest (first operands) first, each with its operand count
+        self._forests: dict[int, list[tuple[s.Expr, int]]] = {}
+        self._replaced: list[s.Expr] = []  # nodes of a run built over again: kept, so that no new
+        # node takes the id of one and its depth (the dicts above are keyed by id)
 
     def build(self, tree: Tree) -> s.FileSyntax:
         """Build bottom-up without recursion (no depth limit from Python's stack)."""
@@ -347,7 +354,38 @@ class SyntaxBuilder:
     # -- expressions -------------------------------------------------------------
     def binary(self, meta: Meta, ch: list[Any]) -> s.Expr:
         left, op, right = ch
+        if str(op) in ASSOCIATIVE:
+            return self._run(str(op), left, right, self._span(meta))
         return self._expr(s.Binary(str(op), left, right, self._span(meta)), left, right)
+
+    def _run(self, op: str, left: s.Expr, right: s.Expr, span: Span) -> s.Expr:
+        """``left op right`` where ``op`` is associative (``and``, ``or``: the same whichever
+        way the operands group): a run of it (``a or b or c ...``, as users write a condition
+        on every robot of a fleet) is kept a balanced tree, a few levels deep however long, not
+        one level per operand (later stages recurse over it). Its operands stay in order, and
+        each node's span covers its own; the formatter writes it back as written."""
+        forest = self._forests.pop(id(left), None) if isinstance(left, s.Binary) and left.op == op else None
+        if forest is not None:
+            self._replaced.append(left)
+        forest = list(forest) if forest is not None else [(left, 1)]
+        forest.append((right, 1))
+        while len(forest) > 1 and forest[-1][1] == forest[-2][1]:  # two alike: one twice the size
+            (a, size), (b, _) = forest[-2], forest.pop()
+            forest[-1] = (self._joined(op, a, b), 2 * size)
+        node = forest[0][0]
+        for tree, _ in forest[1:]:
+            node = self._joined(op, node, tree)
+            self._replaced.append(node)
+        if not isinstance(node, s.Binary):  # (cannot happen: two operands at least)
+            return node
+        node = self._expr(s.Binary(op, node.left, node.right, span), node.left, node.right)
+        self._forests[id(node)] = forest
+        return node
+
+    def _joined(self, op: str, left: s.Expr, right: s.Expr) -> s.Expr:
+        a, b = left.span, right.span
+        span = Span(a.path, a.line, a.column, b.end_line, b.end_column, a.start, b.end)
+        return self._expr(s.Binary(op, left, right, span), left, right)
 
     def unary(self, meta: Meta, ch: list[Any]) -> s.Expr:
         op, operand = ch
