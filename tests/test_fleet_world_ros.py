@@ -86,9 +86,9 @@ def test_each_driver_of_the_world_knows_where_its_component_is_from_what_went_by
     assert table["bot2"]["service"] == "/fleet/robosc/report/bot2" and table["Door"]["at"] == "closed"
     where = Whereabouts(json.loads(json.dumps(table)))  # as the bridge gets it, one JSON line
     assert where.where("bot1") == "depot"
-    for name, expected in (("bot1.go", "to_out1"), ("bot1.stopped", "stopped_out1"), ("bot1.go", "to_out1"),
-                           ("bot1.arrived", "out1"), ("bot1.go", "to_out2"), ("bot1.charged", "to_out2"),
-                           ("bot1.arrived", "out2")):
+    for name, expected in (("bot1.go", "to_out0"), ("bot1.stopped", "stopped_out0"), ("bot1.go", "to_out0"),
+                           ("bot1.arrived", "out0"), ("bot1.go", "to_out1"), ("bot1.charged", "to_out1"),
+                           ("bot1.arrived", "out1")):
         where.went(name)
         assert where.where("bot1") == expected, name  # an answer it cannot give from there moves nothing
     where.went("bot2.dock")
@@ -98,7 +98,7 @@ def test_each_driver_of_the_world_knows_where_its_component_is_from_what_went_by
     where.went("door_opened")
     assert (where.where("bot2"), where.where("Door")) == ("ready", "open")  # charged: a task is next
     where.went("bot2.go")
-    assert where.where("bot2") == "to_out1"
+    assert where.where("bot2") == "to_out0"
 
 
 def test_the_simulators_node_is_copied_once_per_run_over_an_earlier_runs(tmp_path: Path) -> None:

@@ -191,10 +191,15 @@ def test_deep_nesting_is_a_diagnostic_not_a_crash():
     deep = "(" * 5000 + "true" + ")" * 5000
     result = parse_text(f"robot R {{ requirement a needs {deep} }}")
     assert result.syntax is None and "nested" in result.diagnostics[0].message
+    # a run of one associative operator is a balanced tree: 3,000 operands parse, a few levels deep
     long_chain = " or ".join(["true"] * 3000)
     result = parse_text(f"robot R {{ requirement a needs {long_chain} }}")
+    assert result.syntax is not None and not result.diagnostics
+    # a run of one that is not associative counts a level per operand
+    long_chain = " - ".join(["1"] * 3000)
+    result = parse_text(f"robot R {{ requirement a needs {long_chain} > 0 }}")
     [found] = result.diagnostics
     assert result.syntax is None and found.code == "limit"
-    assert found.message == "expression more than 100 levels deep (102 operands joined by 'or' in a row)"
-    result = parse_text(f"robot R {{ requirement a needs {' or '.join(['true'] * 101)} }}")
-    assert result.syntax is not None  # 101 operands: 100 levels, the most
+    assert found.message == "expression more than 100 levels deep (102 operands joined by '-' in a row)"
+    result = parse_text(f"robot R {{ requirement a needs {' - '.join(['1'] * 100)} > 0 }}")
+    assert result.syntax is not None  # 100 operands and the comparison: 100 levels, the most
