@@ -31,6 +31,11 @@ Run:  python benchmarks/fleet_synthesis.py [--families ring,warehouse] [--sizes 
 
 With ``--baseline REV`` each method also runs from that revision's sources, in the same run
 (the machine's speed varies), its row marked ``METHOD@REV``.
+
+With ``--commands`` each row also gives what a user waits for: the whole ``robosc synthesize``
+command (``--fleet METHOD``: warnings and explanations included) and ``robosc build`` (the
+default method, ROS 1 and ROS 2 packages) on the family's model written to a file, in seconds of
+wall time, and their ratio (issue 48 asks for synthesize within 1.5 times build).
 """
 
 from __future__ import annotations
@@ -154,6 +159,29 @@ def measure(
     return figures
 
 
+def command_seconds(
+    family: str, n: int, args: list[str], timeout: float, source: Path | None = None
+) -> float | str:
+    """Wall seconds of ``robosc ARGS FILE`` on the family's model (``source``: the revision's
+    sources to run), or why it did not finish."""
+    sys.path.insert(0, str(HERE))
+    from families import FLEETS
+
+    with tempfile.TemporaryDirectory() as folder:
+        model = Path(folder) / f"{family}{n}.rscd"
+        model.write_text(FLEETS[family](n))
+        command = [sys.executable, "-m", "robosc", *[a.replace("{out}", folder + "/out") for a in args], str(model)]
+        env = {**os.environ, "PYTHONPATH": str(source)} if source is not None else None
+        start = time.perf_counter()
+        try:
+            done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False, env=env)
+        except subprocess.TimeoutExpired:
+            return f"over {timeout:g} s"
+        if done.returncode not in (0, 1):
+            return (done.stderr.strip().splitlines() or ["?"])[-1][:40]
+        return time.perf_counter() - start
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", default="2,4,8,16,32")
@@ -161,6 +189,7 @@ def main() -> None:
     parser.add_argument("--methods", default="counted,monolithic")
     parser.add_argument("--timeout", type=float, default=600.0)
     parser.add_argument("--memory-gb", type=float, default=2.0)
+    parser.add_argument("--commands", action="store_true", help="also time robosc synthesize and robosc build")
     parser.add_argument(
         "--baseline",
         help="a git revision run side by side, its methods marked @REV (e.g. 14910d1, before this session)",
@@ -177,8 +206,9 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
     print(
         "| family | N | method | lines | wall s | synthesis s | peak MB | peak live nodes | images | preimages "
         "| controlled states | largest added condition, chars | module, KB | what is allowed, us | same supervisor |"
+        + (" robosc synthesize s | robosc build s | synthesize / build |" if args.commands else "")
     )
-    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|---:|" if args.commands else ""))
     methods = args.methods.split(",")
     for family in args.families.split(","):
         for n in sizes:
@@ -202,9 +232,22 @@ def table(args: argparse.Namespace, baseline: Path | None) -> None:
                     f"{f['rss_mb']:.0f} | {f.get('peak_live_nodes', '-'):,} | {f.get('images', '-')} | "
                     f"{f.get('preimages', '-')} | {f['states']:,} | {f['condition']:,} | "
                     f"{'-' if f['module'] is None else format(f['module'] / 1024, ',.0f')} | "
-                    f"{'-' if f.get('allowed_us') is None else format(f['allowed_us'], ',.0f')} | {same} |",
+                    f"{'-' if f.get('allowed_us') is None else format(f['allowed_us'], ',.0f')} | {same} |"
+                    + (commands(family, n, method, args.timeout, source) if args.commands else ""),
                     flush=True,
                 )
+
+
+def commands(family: str, n: int, method: str, timeout: float, source: Path | None) -> str:
+    """The table's last three cells: ``robosc synthesize``, ``robosc build`` and their ratio."""
+    synthesize = command_seconds(family, n, ["synthesize", "--fleet", method], timeout, source)
+    build = command_seconds(family, n, ["build", "-o", "{out}"], timeout, source)
+    ratio = f"{synthesize / build:.1f}" if isinstance(synthesize, float) and isinstance(build, float) else "-"
+
+    def cell(x: float | str) -> str:
+        return f"{x:.1f}" if isinstance(x, float) else x
+
+    return f" {cell(synthesize)} | {cell(build)} | {ratio} |"
 
 
 if __name__ == "__main__":
