@@ -101,7 +101,6 @@ class Lone:
         self.inside: Counter[str] = Counter()  # seconds in each cell (and in the warehouse's aisle)
         self.first: dict[str, float] = {}  # seconds from the start until it first enters each zone
         self.after: dict[str, float] = {}  # seconds from last leaving each zone until the task ends
-        self.legs: list[float] = []  # each leg's seconds
         self.legs_inside: dict[str, float] = {}  # each zone: its longest leg that ends in it
 
 
@@ -139,7 +138,6 @@ def lone(world: Any, module: Any, robots: int) -> list[Lone]:
                     fw.command(f"{name}.go")
                 if fw.sim.time - start > 3600:
                     raise RuntimeError(f"{name} alone did not finish its task")
-            alone.legs.append(fw.sim.time - began)
             for zone in zones:
                 alone.legs_inside[zone] = max(alone.legs_inside.get(zone, 0.0), fw.sim.time - began)
         alone.time = fw.sim.time - start

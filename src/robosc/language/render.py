@@ -115,23 +115,28 @@ def _nobody(e: m.Binary) -> tuple[str, bool] | None:
     ``count(q in bot: X) >= 1`` as ``any(q in bot: X)``; None for any other expression."""
     if e.span.line or not (isinstance(e.left, m.Count) and isinstance(e.right, m.Literal) and (e.op, e.right.value) in (("=", 0), (">=", 1))):
         return None
-    counted = _quantified(e.left)
-    if counted is None:
+    over = _over(e.left)
+    if over is None:
         return None
-    some = "any" + counted[len("count"):]
-    return ("!" + some if e.op == "=" else some), True
+    return ("!any" if e.op == "=" else "any") + over, True
 
 
 def _quantified(e: m.Count) -> str | None:
     """``e`` as it is written over an array, ``count(q in bot: ...)``, where it counts the same
     condition of each instance ``bot1``, ``bot2``, ... in order (a count written out, or of
     conditions that differ, is None: its terms are shown)."""
+    over = _over(e)
+    return None if over is None else "count" + over
+
+
+def _over(e: m.Count) -> str | None:
+    """What ``e`` counts over its array, ``(q in bot: ...)`` (see :func:`_quantified`)."""
     if not e.group or len(e.terms) < 2:
         return None
     body = _template(e.group, e.terms)
     if body is None:
         return None
-    return f"count({body[0]} in {escape_name(e.group)}: {body[1]})"
+    return f"({body[0]} in {escape_name(e.group)}: {body[1]})"
 
 
 def _template(group: str, terms: tuple[m.Expr, ...]) -> tuple[str, str] | None:

@@ -58,6 +58,11 @@ class Fixpoint:
             return self.allowed.meets(event, states)
         return bool((states & self.where(event)) != self.enc.false)
 
+    def never_allows(self, event: Event) -> bool:
+        """Whether the supervisor allows the controllable ``event`` in no state the controlled
+        system reaches."""
+        return bool((self.allowed[event] & self.reachable) == self.enc.false)
+
     def where(self, event: Event) -> BDD:
         """The states where the supervisor lets ``event`` happen."""
         return self.allowed[event] if event.controllable else self.enabled[event] & self.good

@@ -116,11 +116,8 @@ def _summed(enc: Encoding, u: BDD, care: BDD, support: set[str], sums: dict[Any,
             continue
         key = tuple(f.name for f in used)
         if key not in sums:
-            total: m.Expr = _ref(used[0])
-            for f in used[1:]:
-                total = m.Binary("+", total, _ref(f), m.INTEGER, NO_SPAN)
             # beyond the group's size a sum is never taken in a valid state (all care is valid)
-            sums[key] = (total, enc.sums(read, size))
+            sums[key] = (_sum(used), enc.sums(read, size))
         total, values = sums[key]
         chosen, free = [], []
         for value, where in values.items():
@@ -154,11 +151,17 @@ def _nobody(enc: Encoding, u: BDD, care: BDD) -> m.Expr | None:
                 empty &= zero
         if not kept or (care & empty & ~u) != enc.false:
             continue
-        total: m.Expr = _ref(enc.field(kept[0]))
-        for counter in kept[1:]:
-            total = m.Binary("+", total, _ref(enc.field(counter)), m.INTEGER, NO_SPAN)
+        total = _sum([enc.field(counter) for counter in kept])
         return m.Binary("=", total, m.Literal(0, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
     return None
+
+
+def _sum(fields: list[Field]) -> m.Expr:
+    """The counters of ``fields`` added up: ``c_depot + c_ready``."""
+    total: m.Expr = _ref(fields[0])
+    for f in fields[1:]:
+        total = m.Binary("+", total, _ref(f), m.INTEGER, NO_SPAN)
+    return total
 
 
 def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, Any]) -> m.Expr:

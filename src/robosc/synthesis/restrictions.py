@@ -24,6 +24,7 @@ def restriction(result: SynthesisResult, event: Event | str) -> Restriction | No
     return why(result.fixpoint, found)
 
 
+
 def never_allows(result: SynthesisResult, event: Event) -> bool:
     """Whether the supervisor allows ``event`` (controllable) in no state the controlled system
     reaches: the one part of :func:`restriction` (its ``never``) that needs no explanation, so
@@ -31,12 +32,6 @@ def never_allows(result: SynthesisResult, event: Event) -> bool:
     16 robots: 60 s of explanations for none)."""
     if not result.ok or not event.controllable:
         return False
-    supervisor = result.supervisor
-    if isinstance(supervisor, CountedSupervisor):
-        fp = supervisor.fp
-        counted = [c for c in supervisor.counted_of(event) if c in fp.allowed]
-        return all((fp.allowed[c] & fp.reachable) == fp.enc.false for c in counted)
-    fixpoint = result.fixpoint
-    if fixpoint is None:
-        return False
-    return bool((fixpoint.allowed[event] & fixpoint.reachable) == fixpoint.enc.false)
+    if isinstance(result.supervisor, CountedSupervisor):
+        return result.supervisor.never_allows(event)
+    return result.fixpoint is not None and result.fixpoint.never_allows(event)

@@ -107,5 +107,4 @@ def reasons(fp: Any, event: Event) -> Reasons | None:
     state, run = found
     after = pick(fp, enc.post(fp.relation[event], fp.state(state)) & fp.bad)
     _, consequence, reason, fixes = explain_path(fp, fp.state(after))
-    never = (fp.allowed[event] & fp.reachable) == enc.false
-    return Reasons(event, run, state, after, consequence, reason, fixes, never)
+    return Reasons(event, run, state, after, consequence, reason, fixes, fp.never_allows(event))

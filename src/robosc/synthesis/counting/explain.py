@@ -88,6 +88,7 @@ class Robots:
             for group in fleet.groups
             for agent in group.agents
         }
+        self.started = dict(self.where)  # where each robot starts
         self.counted_at = {a.name: i for i, a in enumerate(fleet.network.automata)}
         self.counted_value = {v: i for i, v in enumerate(fleet.network.variables)}
 
@@ -120,8 +121,7 @@ class Robots:
         """A new follower that moves ``other`` where this one moved ``one`` and the other way
         round; None unless the two start in the same place (then they are alike: a run of one
         is a run of the other)."""
-        start = Robots(self.supervisor)
-        if start.where[id(one)] != start.where[id(other)]:
+        if self.started[id(one)] != self.started[id(other)]:
             return None
         swap = {id(one): other, id(other): one}
         return Robots(self.supervisor, [swap.get(id(a), a) for a in self.moved])
@@ -183,8 +183,7 @@ def counted_why(supervisor: CountedSupervisor, event: Event) -> Restriction | No
     never does. When the robot of ``event`` cannot be the one restricted in that run (robots
     that start elsewhere), the run is shown for the robot that is, and the restriction says so."""
     fp = supervisor.fp
-    candidates = [c for c in supervisor.counted_of(event) if c in fp.allowed]
-    found = counted_reasons(fp, candidates)
+    found = counted_reasons(fp, supervisor.restricted_of(event))
     if not found:
         return None
     best = min(found, key=lambda r: len(r.run))
@@ -244,6 +243,6 @@ def counted_why(supervisor: CountedSupervisor, event: Event) -> Restriction | No
         describe(network, state),
         describe(network, after),
         explanation,
-        all((fp.allowed[c] & fp.reachable) == fp.enc.false for c in candidates),  # from no local state
+        supervisor.never_allows(event),  # from no local state
         alike,
     )

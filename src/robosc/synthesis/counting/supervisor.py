@@ -85,6 +85,15 @@ class CountedSupervisor:
         group, agent = owner
         return self.counted_events.get(group.to_rep[id(agent)][event], [])
 
+    def restricted_of(self, event: Event) -> list[Event]:
+        """The counted events of ``event`` (:meth:`counted_of`) that synthesis may restrict."""
+        return [c for c in self.counted_of(event) if c in self.fp.allowed]
+
+    def never_allows(self, event: Event) -> bool:
+        """Whether the supervisor allows the controllable ``event`` in no state the controlled
+        system reaches (from no local state of its robot)."""
+        return all(self.fp.never_allows(c) for c in self.restricted_of(event))
+
     def allows(self, event: Event, state: Any) -> bool:
         return self._allows(event, *self._state(state))
 
