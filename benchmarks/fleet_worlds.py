@@ -1,31 +1,44 @@
-"""The lane and the crossing of examples/scenarios at any fleet size, for benchmarks/throughput.py:
-a world file and a model written from each robot's route, as benchmarks/scenarios.py writes the
-two-robot and four-robot ones.
+"""Streets one robot wide at any fleet size, for benchmarks/throughput.py: a world file and a
+model written from each robot's route.
 
-* **lane(n)**: a corridor one robot wide (cells l1, l2, l3) between two gates (gw, ge: cells
-  for one robot at each end), n robots homed on each side on an arc round their gate. A task:
-  through the gate and the corridor to the far gate, turn there (``at_5``), and back home.
-* **crossing(n)**: two streets one robot wide that cross (cells w, x, e and n, x, s) with a
-  gate at each of the four ends and n robots homed round each gate; a robot crosses to the
-  far gate and comes back.
+* **lane(n)**: a corridor one robot wide (cells l1, l2, l3) between two gates (gw, ge: a cell
+  for one robot in front of each end), n robots homed on each side on an arc round their gate.
+* **crossing(n)**: two such streets that cross (cells w, x, e and s, x, n), a gate at each of
+  the four ends and n robots homed round each gate.
 
-A robot starts a leg only into a cell no other robot holds (is in, on its way into or out of,
-or stopped on the way); its home has room for it alone, and its way home from the gate (a ray
-of the arc) crosses no other's. The walls are the lane's sides; the crossing's robots keep to
-their streets by their legs.
+A task: through the near gate and the street, cell by cell, to the far gate's point, on to the
+robot's own turning place beyond it (``at_6``), back the same way and home. Round each gate,
+the homes of its robots and the turning places of the robots from the far end take turns on one
+arc, at least SLOT apart, clear of the gate's cell; a robot's way from the gate to its place is
+a ray of that arc, crossing no other's.
+
+Each leg ends at rest just inside the far end of the cell it drives into (END before the next
+cell), so that a robot waits for the next cell with its body clear of it. A robot starts a leg
+only into a cell no other robot holds, and holds the cells it starts in until its driver says
+``left`` (its body is out of them: robosc.sim.fleet), so that the next robot going the same way
+follows one cell behind. The walls are the lane's sides; the crossing's robots keep to their
+streets by their legs.
+
+``state_name``, ``move_name`` and ``holding`` are the states of the two- and four-robot
+scenarios' routes (benchmarks/scenarios.py), where a robot holds a cell until it arrives in the
+next.
 """
 
 from __future__ import annotations
 
 import math
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 CELL = 2.0  # metres: each cell's length
 WIDTH = 1.2  # metres: a lane's width
 ARC = 2.6  # metres from a gate's point to the homes round it
-CHUNK = 60  # states named in one requirement at most (robosc check refuses 100 operands in a row)
+GATE = 0.6  # metres from a street's end to its gate's point (the gate's cell: twice that deep, 2 m wide)
+END = 0.3  # metres: a robot stops this far before a cell's end (its body in the cell, clear of the next)
+BEYOND = 0.5  # metres: a robot comes to its place round a gate from this far beyond it, to stand facing the gate
+SLOT = 0.9  # metres at least between neighbouring places on an arc round a gate
 
 
 def state_name(k: int, positions: int) -> str:
@@ -50,39 +63,6 @@ def holding(route: tuple[str | None, ...], cell: str) -> list[str]:
                 if state not in states:
                     states.append(state)
     return states
-
-
-def model(name: str, routes: list[tuple[str | None, ...]]) -> str:
-    """The fleet's model: each ``go`` drives the next leg, the robot answers ``arrived`` (or
-    ``stopped``), and a robot starts a leg only into a cell no other robot holds."""
-    positions = len(routes[0]) + 1
-    lines = [f"// {name}: {len(routes)} robots, written by benchmarks/fleet_worlds.py from their routes",
-             f"robot {name.capitalize()} {{", f"    component bot[{len(routes)}] {{",
-             "        incoming message go with type: none",
-             "        outgoing message arrived with type: none",
-             "        outgoing message stopped with type: none",
-             "        behaviour {"]
-    for k in range(positions):
-        nxt = k + 1
-        initial = "initial marked " if k == 0 else ""
-        lines.append(f"            {initial}state {state_name(k, positions)} {{ on request to go goto {move_name(nxt, positions)} }}")
-        lines.append(f"            state {move_name(nxt, positions)} {{")
-        lines.append(f"                on response from arrived goto {state_name(nxt, positions)}")
-        lines.append(f"                on response from stopped goto stopped_{nxt}")
-        lines.append("            }")
-        lines.append(f"            state stopped_{nxt} {{ on request to go goto {move_name(nxt, positions)} }}")
-    lines += ["        }", "    }"]
-    for i, route in enumerate(routes, 1):
-        for k in range(positions):
-            cell = route[k] if k < positions - 1 else None
-            if cell is None:
-                continue
-            others = [f"bot{j}.{s}" for j, other in enumerate(routes, 1) if j != i for s in holding(other, cell)]
-            for start in range(0, len(others), CHUNK):  # (a long condition split over requirements)
-                part = " or ".join(others[start : start + CHUNK])
-                lines.append(f"    requirement bot{i}.go needs bot{i}.{state_name(k, positions)} => !({part})")
-    lines.append("}")
-    return "\n".join(lines) + "\n"
 
 
 def _fan(gate: tuple[float, float], facing: float, count: int) -> list[tuple[float, float, float]]:
@@ -125,69 +105,222 @@ def _yaml(name: str, size: tuple[float, float], homes: list[tuple[float, float, 
     return "\n".join(lines) + "\n"
 
 
+@dataclass(frozen=True)
+class Leg:
+    """One leg of a robot's route, as the model sees it: the cells its body is in when it starts
+    (other than the one it ends in), the cell it ends in (None: a place of the robot's own), and
+    whether its driver says ``left`` on the way (its body leaves every cell but the end's)."""
+
+    start: tuple[str, ...]
+    end: str | None
+    points: tuple[str, ...]  # the world's waypoints it drives through
+
+    @property
+    def leaves(self) -> bool:
+        return bool(self.start)
+
+
+@dataclass(frozen=True)
+class Street:
+    """A street one robot wide: ``cells`` in a row from gate ``gates[0]`` to gate ``gates[1]``,
+    the first starting at ``start`` and the row going ``along`` (a unit vector)."""
+
+    cells: tuple[str, ...]
+    gates: tuple[str, str]
+    start: tuple[float, float]
+    along: tuple[float, float]
+    kinds: tuple[str, str]  # the robots homed at each end
+
+    def at(self, distance: float) -> tuple[float, float]:
+        """The point ``distance`` metres along the street from its start (negative: before it)."""
+        return (round(self.start[0] + distance * self.along[0], 3), round(self.start[1] + distance * self.along[1], 3))
+
+    def points(self) -> dict[str, tuple[float, float]]:
+        """Its waypoints: each gate's point (1 m beyond the street's end) and its mouth (just in
+        front of the first cell), and each cell's two ends (``l2_ge``: the end of l2 toward ge)."""
+        length = CELL * len(self.cells)
+        a, b = self.gates
+        points = {a: self.at(-GATE), b: self.at(length + GATE), f"{a}_in": self.at(-END), f"{b}_in": self.at(length + END)}
+        for k, cell in enumerate(self.cells):
+            points[f"{cell}_{b}"] = self.at(CELL * (k + 1) - END)
+            points[f"{cell}_{a}"] = self.at(CELL * k + END)
+        return points
+
+    def route(self, side: int, turn: str, robot: int = 1) -> list[Leg]:
+        """The legs of a robot homed at gate ``gates[side]``: to the mouth, cell by cell through
+        the street (each leg ends at the far end of the next cell), to the far gate's point, to
+        ``turn`` (its own place beyond the far gate), back the same way, home. It comes to its
+        place and its home from beyond them (``t3_out``, ``h3_out`` for robot 3), so that it
+        stands there facing the gate it leaves by next."""
+        near, far = self.gates if side == 0 else self.gates[::-1]
+        cells = self.cells if side == 0 else self.cells[::-1]
+        legs = [Leg((), near, (f"{near}_in",))]
+        before = near
+        for cell in cells:
+            legs.append(Leg((before,), cell, (f"{cell}_{far}",)))
+            before = cell
+        legs += [Leg((before,), far, (far,)), Leg((far,), None, (f"{turn}_out", turn)), Leg((), far, (f"{far}_in",))]
+        before = far
+        for cell in reversed(cells):
+            legs.append(Leg((before,), cell, (f"{cell}_{near}",)))
+            before = cell
+        return [*legs, Leg((before,), near, (near,)), Leg((near,), None, (f"h{robot}_out", "home"))]
+
+
+def _states(k: int, leg: Leg, positions: int) -> dict[str, list[str]]:
+    """The states of a robot during leg ``k`` (1 ..) and at its end: ``to`` (the cells held: the
+    start's and the end's), ``past`` (after ``left``: the end's alone) and ``at``."""
+    at = "home" if k == positions else f"at_{k}"
+    return {"to": [f"to_{k}", f"stopped_{k}"], "past": [f"past_{k}", f"stopped_past_{k}"] if leg.leaves else [], "at": [at]}
+
+
+def street_model(name: str, kinds: dict[str, tuple[list[Leg], int]]) -> str:
+    """The fleet's model: a component array per kind of robot (its route and how many), each
+    ``go`` driving the next leg; the robot answers ``left`` once its body is out of the cells it
+    started the leg in, ``arrived`` at the leg's end (or ``stopped``). A robot starts a leg only
+    into a cell no other robot holds (is in, or is on its way into or out of), written once per
+    kind with ``any`` over each kind (so that synthesis counts the robots of a kind)."""
+    lines = [f"// {name}: {sum(n for _, n in kinds.values())} robots, written by benchmarks/fleet_worlds.py from their routes",
+             f"robot {name.capitalize()} {{"]
+    for kind, (legs, count) in kinds.items():
+        positions = len(legs)
+        lines += [f"    component {kind}[{count}] {{",
+                  "        incoming message go with type: none",
+                  "        outgoing message arrived with type: none",
+                  "        outgoing message stopped with type: none",
+                  "        outgoing message left with type: none",
+                  "        behaviour {"]
+        for k, leg in enumerate(legs, 1):
+            before = "home" if k == 1 else f"at_{k - 1}"
+            states = _states(k, leg, positions)
+            initial = "initial marked " if k == 1 else ""
+            lines.append(f"            {initial}state {before} {{ on request to go goto to_{k} }}")
+            lines.append(f"            state to_{k} {{")
+            lines.append(f"                on response from arrived goto {states['at'][0]}")
+            lines.append(f"                on response from stopped goto stopped_{k}")
+            if leg.leaves:
+                lines.append(f"                on response from left goto past_{k}")
+            lines.append("            }")
+            lines.append(f"            state stopped_{k} {{ on request to go goto to_{k} }}")
+            if leg.leaves:
+                lines.append(f"            state past_{k} {{")
+                lines.append(f"                on response from arrived goto {states['at'][0]}")
+                lines.append(f"                on response from stopped goto stopped_past_{k}")
+                lines.append("            }")
+                lines.append(f"            state stopped_past_{k} {{ on request to go goto past_{k} }}")
+        lines += ["        }", "    }"]
+    holders: dict[tuple[str, str], list[str]] = {}  # (kind, cell): the states a robot of the kind holds the cell in
+    for kind, (legs, _) in kinds.items():
+        for k, leg in enumerate(legs, 1):
+            states = _states(k, leg, len(legs))
+            for cell in leg.start:
+                holders.setdefault((kind, cell), []).extend(states["to"])
+            if leg.end is not None:
+                holders.setdefault((kind, leg.end), []).extend(states["to"] + states["past"] + states["at"])
+    for kind, (legs, _) in kinds.items():
+        lines.append(f"    for r in {kind} {{")
+        for k, leg in enumerate(legs, 1):
+            if leg.end is None or leg.end in leg.start:
+                continue
+            before = "home" if k == 1 else f"at_{k - 1}"
+            free = []
+            for other in kinds:
+                held = " or ".join(f"q.{state}" for state in holders.get((other, leg.end), []))
+                if held:
+                    free.append(f"!any(q in {other}: q != r and ({held}))" if other == kind else f"!any(q in {other}: {held})")
+            lines.append(f"        requirement r.go needs r.{before} => (" + " and ".join(free) + ")")
+        lines.append("    }")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def _arc(gate: tuple[float, float], facing: float, count: int) -> list[tuple[float, float, float]]:
+    """``count`` places on an arc round ``gate`` away from ``facing`` (the direction, in degrees,
+    from the gate into its street), at least SLOT apart, each facing the gate: (x, y, heading)."""
+    spread = min(180.0, 32.0 * (count - 1))
+    gap = math.radians(spread / (count - 1)) if count > 1 else math.pi
+    radius = max(math.hypot(GATE, 1.0) + 0.3, SLOT / (2 * math.sin(gap / 2)))  # clear of the gate's cell
+    places = []
+    for k in range(count):
+        angle = facing + 180.0 + (spread * (k / (count - 1) - 0.5) if count > 1 else 0.0)
+        x = gate[0] + radius * math.cos(math.radians(angle))
+        y = gate[1] + radius * math.sin(math.radians(angle))
+        places.append((round(x, 3), round(y, 3), round((angle + 180.0) % 360.0, 1)))
+    return places
+
+
+def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, float],
+             walls: list[Any], cells: dict[str, list[list[float]]]) -> tuple[str, str]:
+    """(world file text, model text): ``per_end`` robots homed round each gate of each street,
+    in turn (the first street's first gate, its second gate, the next street's ...), each robot
+    crossing its street, turning at its own place beyond the far gate and coming back. Round a
+    gate its homes and the turning places of the robots from the other end take turns on one
+    arc."""
+    points: dict[str, tuple[float, float]] = {}
+    for street in streets:
+        points.update(street.points())
+    arcs = {}
+    for s, street in enumerate(streets):
+        for side in (0, 1):
+            gate = points[street.gates[side]]
+            facing = math.degrees(math.atan2(street.along[1], street.along[0])) + (0.0 if side == 0 else 180.0)
+            arcs[(s, side)] = _arc(gate, facing, 2 * per_end)
+    # the robots in the coordinator's order (robosc.sim.fleet.instances): kind by kind, by name
+    kinds = sorted((street.kinds[side], s, side) for s, street in enumerate(streets) for side in (0, 1))
+    homes, legs = [], []
+    for _, s, side in kinds:
+        for k in range(per_end):
+            robot = len(homes) + 1
+            homes.append(arcs[(s, side)][2 * k])
+            turn = arcs[(s, 1 - side)][2 * k + 1]
+            points[f"t{robot}"] = (turn[0], turn[1])
+            for name, (x, y, heading) in ((f"t{robot}_out", turn), (f"h{robot}_out", homes[-1])):
+                points[name] = (round(x - BEYOND * math.cos(math.radians(heading)), 3),
+                                round(y - BEYOND * math.sin(math.radians(heading)), 3))
+            legs.append([list(leg.points) for leg in streets[s].route(side, f"t{robot}", robot)])
+    model = {kind: (streets[s].route(side, "t"), per_end) for kind, s, side in kinds}
+    turn_at = len(next(iter(model.values()))[0]) // 2
+    world = _yaml(f"{name}{len(homes)}", size, homes, walls, points, legs, cells, [f"at_{turn_at}", "home"])
+    return world, street_model(name, model)
+
+
 def lane(per_side: int) -> tuple[str, str]:
     """(world file text, model text) of the lane with ``per_side`` robots homed at each end."""
-    margin = ARC + 1.0
-    west = (margin, margin + 1.5)
-    x0 = west[0] + 1.0  # the corridor's west end
-    cells_x = [x0 + CELL * k for k in range(4)]
-    east = (cells_x[-1] + 1.0, west[1])
-    size = (east[0] + margin, west[1] + margin + 1.5)
-    y = west[1]
-    points = {"gw": west, "ge": east}
-    cells = {"gw": _box(west[0] - 1.0, y - 1.0, x0, y + 1.0), "ge": _box(cells_x[-1], y - 1.0, east[0] + 1.0, y + 1.0)}
-    for k, name in enumerate(("l1", "l2", "l3")):
-        points[name] = ((cells_x[k] + cells_x[k + 1]) / 2, y)
-        cells[name] = _box(cells_x[k], y - WIDTH / 2, cells_x[k + 1], y + WIDTH / 2)
-    homes_w, homes_e = _fan(west, 0.0, per_side), _fan(east, 180.0, per_side)
-    homes, legs, routes = [], [], []
-    for k in range(per_side):  # alternately from the west and the east, so that any two robots meet
-        homes += [homes_w[k], homes_e[k]]
-        legs += [[["gw"], ["l1"], ["l2"], ["l3"], ["ge"], ["l3"], ["l2"], ["l1"], ["gw"], ["home"]],
-                 [["ge"], ["l3"], ["l2"], ["l1"], ["gw"], ["l1"], ["l2"], ["l3"], ["ge"], ["home"]]]
-        routes += [("gw", "l1", "l2", "l3", "ge", "l3", "l2", "l1", "gw"), ("ge", "l3", "l2", "l1", "gw", "l1", "l2", "l3", "ge")]
+    radius = _arc((0.0, 0.0), 0.0, 2 * per_side)[0]
+    reach = math.ceil(10 * math.hypot(radius[0], radius[1])) / 10 + 1.0  # from a gate's point to the world's edge
+    x0 = reach + 1.0  # the corridor's west end
+    y = reach
+    size = (2 * x0 + 3 * CELL, 2 * reach)
+    street = Street(("l1", "l2", "l3"), ("gw", "ge"), (x0, y), (1.0, 0.0), ("west", "east"))
+    east = x0 + 3 * CELL
+    cells = {"gw": _box(x0 - 2 * GATE, y - 1.0, x0, y + 1.0), "ge": _box(east, y - 1.0, east + 2 * GATE, y + 1.0)}
+    for k, name in enumerate(street.cells):
+        cells[name] = _box(x0 + CELL * k, y - WIDTH / 2, x0 + CELL * (k + 1), y + WIDTH / 2)
     half = WIDTH / 2
     walls = [[(0, 0), (size[0], 0), (size[0], size[1]), (0, size[1]), (0, 0)],
-             [(x0, y - half), (cells_x[-1], y - half)], [(x0, y + half), (cells_x[-1], y + half)]]
-    return (_yaml(f"lane{2 * per_side}", size, homes, walls, points, [[list(leg) for leg in r] for r in legs], cells,
-                  ["at_5", "home"]), model("lane", routes))
+             [(x0, y - half), (east, y - half)], [(x0, y + half), (east, y + half)]]
+    return _streets("lane", [street], per_side, size, walls, cells)
 
 
 def crossing(per_end: int) -> tuple[str, str]:
-    """(world file text, model text) of the crossing with ``per_end`` robots homed at each of
+    """(world file text, model text) of the crossing with ``per_end`` robots homed round each of
     its four gates."""
-    margin = ARC + 1.0
-    centre = margin + 1.0 + 1.5 * CELL
-    c = (centre, centre)
+    radius = _arc((0.0, 0.0), 0.0, 2 * per_end)[0]
+    reach = math.ceil(10 * math.hypot(radius[0], radius[1])) / 10 + 1.0
+    centre = reach + 1.0 + 1.5 * CELL
     half = CELL / 2
     size = (2 * centre, 2 * centre)
-    gate = CELL * 1.5 + 1.0  # from the centre to a gate's point
-    points = {"x": c, "w": (centre - CELL, centre), "e": (centre + CELL, centre),
-              "s": (centre, centre - CELL), "n": (centre, centre + CELL),
-              "gw": (centre - gate, centre), "ge": (centre + gate, centre),
-              "gs": (centre, centre - gate), "gn": (centre, centre + gate)}
+    west_east = Street(("w", "x", "e"), ("gw", "ge"), (centre - 1.5 * CELL, centre), (1.0, 0.0), ("west", "east"))
+    south_north = Street(("s", "x", "n"), ("gs", "gn"), (centre, centre - 1.5 * CELL), (0.0, 1.0), ("south", "north"))
     cells = {"x": _box(centre - half, centre - half, centre + half, centre + half)}
+    gate = 1.5 * CELL + GATE  # from the centre to a gate's point
     for name, (dx, dy) in {"w": (-1, 0), "e": (1, 0), "s": (0, -1), "n": (0, 1)}.items():
         px, py = centre + dx * CELL, centre + dy * CELL
         cells[name] = _box(px - half, py - half, px + half, py + half)
         gx, gy = centre + dx * gate, centre + dy * gate
-        cells["g" + name] = _box(gx - 1.0, gy - 1.0, gx + 1.0, gy + 1.0)
-    streets = {  # from: (its gate, the facing into the street, the cells out, the far gate)
-        "w": ("gw", 0.0, ("w", "x", "e"), "ge"), "e": ("ge", 180.0, ("e", "x", "w"), "gw"),
-        "s": ("gs", 90.0, ("s", "x", "n"), "gn"), "n": ("gn", 270.0, ("n", "x", "s"), "gs"),
-    }
-    fans = {end: _fan(points[g], facing, per_end) for end, (g, facing, _, _) in streets.items()}
-    homes, legs, routes = [], [], []
-    for k in range(per_end):
-        for end, (g, _, out, far) in streets.items():
-            homes.append(fans[end][k])
-            route = (g, *out, far, *reversed(out), g)
-            routes.append(route)
-            legs.append([[cell] for cell in route] + [["home"]])
+        cells["g" + name] = _box(gx - (GATE if dx else 1.0), gy - (GATE if dy else 1.0), gx + (GATE if dx else 1.0), gy + (GATE if dy else 1.0))
     walls = [[(0, 0), (size[0], 0), (size[0], size[1]), (0, size[1]), (0, 0)]]
-    return (_yaml(f"crossing{4 * per_end}", size, homes, walls, points, legs, cells, ["at_5", "home"]),
-            model("crossing", routes))
-
+    return _streets("crossing", [west_east, south_north], per_end, size, walls, cells)
 
 def load(text: str) -> Any:
     """A world from its file's text."""

@@ -113,6 +113,54 @@ def test_where_a_robot_is_says_the_point_its_next_leg_ends_at_and_what_it_drives
     assert re.fullmatch(r"bot1 in depot \(driving into c1, [\d.]+ m from \(4\.4, 3\.3\)\)", world.whereabouts(0))
 
 
+def _answers_of_a_leg(world: FleetWorld, robot: str) -> list[tuple[str, frozenset[str]]]:
+    """Drive ``robot``'s next leg: each answer it gives and the cells its body is in then."""
+    world.command(f"{robot}.go")
+    said: list[tuple[str, frozenset[str]]] = []
+    while not any(name == f"{robot}.arrived" for name, _ in said) and world.sim.time < 120:
+        pose = world.sim.bodies[0].pose
+        for name, _ in world.step():
+            if name.startswith(robot + "."):
+                pose = world.sim.bodies[0].pose
+                said.append((name, world.fleet.cells_under(pose.x, pose.y, world.sim.world.robot.radius)))
+    return said
+
+
+def test_a_robot_says_left_once_its_body_is_out_of_the_cells_it_started_in() -> None:
+    """With ``left`` in the model, a driver says it once in a leg, as soon as its body (not
+    only its centre) overlaps no cell but the one the leg ends in, and before ``arrived``; in a
+    leg that starts and ends in one cell it says nothing more than ``arrived``, and a model
+    without ``left`` hears none."""
+    world = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"], leaving=True)
+    world.command("open_door")
+    while world.door is not None and world.door.state != "open":
+        world.step()
+    said = _answers_of_a_leg(world, "bot1")  # to the place beside the doorway: depot to depot
+    assert [name for name, _ in said] == ["bot1.arrived"], said
+    said = _answers_of_a_leg(world, "bot1")  # into c1, out of the depot
+    assert [name for name, _ in said] == ["bot1.left", "bot1.arrived"], said
+    assert said[0][1] == {"c1"}, said  # out of the depot with its whole body
+    # ... and not a step later than that: one step before, the body was still in the depot
+    again = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"], leaving=True)
+    again.command("open_door")
+    while again.door is not None and again.door.state != "open":
+        again.step()
+    _answers_of_a_leg(again, "bot1")
+    again.command("bot1.go")
+    while True:
+        pose = again.sim.bodies[0].pose
+        under = again.fleet.cells_under(pose.x, pose.y, again.sim.world.robot.radius)
+        if "bot1.left" in [name for name, _ in again.step()]:
+            break
+    assert "depot" in under
+    quiet = FleetWorld(load_world(WORLD), ["bot1", "bot2", "bot3"])
+    quiet.command("open_door")
+    while quiet.door is not None and quiet.door.state != "open":
+        quiet.step()
+    _answers_of_a_leg(quiet, "bot1")
+    assert [name for name, _ in _answers_of_a_leg(quiet, "bot1")] == ["bot1.arrived"]
+
+
 def test_a_closed_door_is_in_the_lidars_way_a_robot_stops_before_it() -> None:
     """A robot told to go while the door is closed (no coordinator: the world alone) sees the
     door with its LiDAR, stops short of it and says `stopped`; once the door has opened and it is

@@ -40,3 +40,35 @@ def test_robosc_never_deadlocks_or_collides_where_the_hand_written_rule_does(sce
         assert report.collisions == 0 and all(s.tasks >= tasks for s in report.robots)  # type: ignore[attr-defined]
     failed = [scenarios.run_once(coordinators["rule"], world, tasks, seed) for seed in range(runs)]
     assert all(r.why.startswith(("deadlock", "collision")) for r in failed), [r.why for r in failed]  # type: ignore[attr-defined]
+
+
+def test_the_lane_written_for_a_fleet_size_says_left_where_its_model_takes_it() -> None:
+    """benchmarks/fleet_worlds.py's lane of two robots (west1 and east1, homed at its two ends): every answer the
+    drivers give, ``left`` included, is one the model takes where the robot is, each robot says
+    ``left`` in every leg that starts in a cell (ten of its twelve), and the tasks get done."""
+    import fleet_worlds
+    from robosc.api import plan_supervisor
+    from robosc.debug.simulator import load_module
+    from robosc.sim.fleet import FleetRun
+    from robosc.sim.run import drive
+
+    world_text, model_text = fleet_worlds.lane(1)
+    module = load_module(plan_supervisor(fleet_worlds.synthesized(model_text)))
+    events: list[str] = []
+    run = FleetRun(fleet_worlds.load(world_text), module, 2, tasks=1, on_event=lambda r: events.append(r["event"]))
+    refused: list[tuple[float, str]] = []
+    deliver = run.coordinator.deliver
+
+    def checked(name: str, *args: object, **kwargs: object) -> bool:
+        taken = deliver(name, *args, **kwargs)
+        if not taken:
+            refused.append((run.sim.time, name))
+        return bool(taken)
+
+    run.coordinator.deliver = checked
+    report = drive(run, timeout=600)
+    assert report.ok, report.why  # type: ignore[attr-defined]
+    assert refused == []
+    routes = fleet_worlds.Street(("l1", "l2", "l3"), ("gw", "ge"), (0.0, 0.0), (1.0, 0.0), ("west", "east")).route(0, "t1")
+    assert sum(leg.leaves for leg in routes) == 10 and len(routes) == 12
+    assert events.count("west1.left") == 10 and events.count("east1.left") == 10, events

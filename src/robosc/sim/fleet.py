@@ -12,6 +12,8 @@ instance ``bot1``'s ``go``; instances in order are the world's robots 1, 2, ...)
   ``stopped`` where its LiDAR sees its way blocked for half a second (it then waits; the next
   ``go`` goes on with the same leg). A ``go`` that comes while the robot is still driving is
   queued, as a driver queues goals.
+* ``left`` (where the model has it): once in a leg, when the robot's body overlaps no cell but
+  the one the leg ends in, having overlapped another (the cells behind it are free).
 * ``dock``: drive to the charger, charge, drive home, then answer ``charged``.
 * ``open_door`` / ``close_door``: the door opens or closes in its ``seconds`` and answers
   ``door_opened`` / ``door_closed``; a robot in the doorway while the door is not open is a
@@ -47,7 +49,7 @@ BLOCKED_GAP = 0.25  # metres between the robot's edge and what its LiDAR sees ah
 BLOCKED_FOR = 0.5  # seconds blocked before the driver stops and says so
 AHEAD = math.radians(25)  # half the angle the driver looks ahead in
 ROBOT_COMMANDS = ("go", "dock")
-ROBOT_ANSWERS = ("arrived", "stopped", "charged")  # what a driver says (Driver.answers)
+ROBOT_ANSWERS = ("arrived", "stopped", "charged", "left")  # what a driver says (Driver.answers)
 DOOR_COMMANDS = {"open_door": "opening", "close_door": "closing"}
 DOOR_ANSWERS = ("door_opened", "door_closed")  # what the door says (DoorSim.answers)
 PERSON_DETECTOR = "person_cell"  # the answer that says which cell the person is in
@@ -101,8 +103,12 @@ class Driver:
     """One robot's driver: drives the legs of the task, docks, and answers as a fleet's robot
     does (see the module's description)."""
 
-    def __init__(self, index: int, fleet: Fleet, home: Pose, speed: float = 1.0, wake: float = 0.0) -> None:
+    def __init__(self, index: int, fleet: Fleet, home: Pose, speed: float = 1.0, wake: float = 0.0,
+                 leaving: bool = False) -> None:
         self.index, self.fleet, self.home = index, fleet, home
+        self.leaving = leaving  # whether it says ``left`` (the model has that answer)
+        self.watch = ""  # the cell the leg under way ends in ("" for none) while ``left`` may still come
+        self.was_out = False  # whether its body has overlapped another cell in the leg under way
         self.task = fleet.task_of(index)
         self.speed = speed  # a share of the world's top speed this robot drives at
         self.wake = wake  # simulated seconds before it starts to move (commands wait till then)
@@ -145,6 +151,8 @@ class Driver:
         names = self.task[self.leg]
         self.path = [self.fleet.point(name, self.home) for name in names]
         self.doing = "driving"
+        if self.leaving:
+            self.watch, self.was_out = "@" + self.fleet.cell(*self.path[-1]), False
 
     def step(self, sim: Simulation, scan: list[float] | None, now: float, status: FleetStatus) -> None:
         """Drive toward the next point of the path; answer what happened."""
@@ -160,6 +168,8 @@ class Driver:
         if self.doing not in ("driving", "docking", "undocking") or not self.path:
             return
         pose = sim.bodies[self.index].pose
+        if self.watch and self.doing == "driving":
+            self._left(pose, sim.world.robot.radius)
         if self.doing == "driving" and scan is not None and self._blocked(sim, scan):
             if self.blocked_since is None:
                 self.blocked_since = now
@@ -184,6 +194,16 @@ class Driver:
         angular = max(-limits.max_angular, min(limits.max_angular, 3.0 * error))
         linear = 0.0 if abs(error) > 0.35 else min(limits.max_linear * self.speed, 1.5 * distance)
         sim.command_velocity(self.index, linear, angular)
+
+    def _left(self, pose: Pose, radius: float) -> None:
+        """Say ``left`` (once a leg) when the body, which overlapped a cell other than the one
+        the leg ends in, overlaps none but that one."""
+        others = self.fleet.cells_under(pose.x, pose.y, radius) - {self.watch[1:]}
+        if others:
+            self.was_out = True
+        elif self.was_out:
+            self.answers.append("left")
+            self.watch = ""
 
     def _finished(self, now: float, status: FleetStatus) -> None:
         if self.doing == "docking":
@@ -264,7 +284,7 @@ class FleetWorld:
     come in by the coordinator's names (``bot1.go``, ``open_door``); each ``step()`` returns the
     answers the robots and the door gave (``bot1.arrived``, ``door_opened``)."""
 
-    def __init__(self, world: World, names: list[str], jitter: Jitter | None = None) -> None:
+    def __init__(self, world: World, names: list[str], jitter: Jitter | None = None, leaving: bool = False) -> None:
         if world.fleet is None:
             raise FleetMisfit(f"{world.path} is not a fleet's world (it has no 'fleet')")
         self.sim = Simulation(world, len(names))
@@ -272,7 +292,7 @@ class FleetWorld:
         self.names = names
         self.index = {name: i for i, name in enumerate(names)}
         draws = jitter.draw(len(names)) if jitter is not None else [(1.0, 0.0)] * len(names)
-        self.drivers = [Driver(i, world.fleet, world.start(i), *draws[i]) for i in range(len(names))]
+        self.drivers = [Driver(i, world.fleet, world.start(i), *draws[i], leaving=leaving) for i in range(len(names))]
         self.status = [FleetStatus(name) for name in names]
         self.door = DoorSim(world.fleet.door.seconds) if world.fleet.door is not None else None
         self.scans: list[list[float] | None] = [None] * len(names)
@@ -485,7 +505,7 @@ class FleetRun:
     ) -> None:
         names = instances(module)
         check_size(names, robots)
-        self.world = FleetWorld(world, names, jitter)
+        self.world = FleetWorld(world, names, jitter, leaving=any(e.endswith(".left") for e in module.Robot.EVENT))
         self.sim = self.world.sim
         self.rate = rate
         self.tasks, self.stall = tasks, stall  # the run ends well when every task given is done

@@ -162,7 +162,7 @@ def run_fleet_ros(
     names = instances(module)
     check_size(names, robots)
     commands, answers = wiring(plan, names)
-    fleet = FleetWorld(world, names, jitter)
+    fleet = FleetWorld(world, names, jitter, leaving=any(entry[0].endswith(".left") for entry in answers))
     if folder is None:
         folder = Path(tempfile.mkdtemp(prefix="robosc-fleet-"))
     folder.mkdir(parents=True, exist_ok=True)
