@@ -35,10 +35,12 @@ from typing import Any
 CELL = 2.0  # metres: each cell's length
 WIDTH = 1.2  # metres: a lane's width
 ARC = 2.6  # metres from a gate's point to the homes round it
-GATE = 0.6  # metres from a street's end to its gate's point (the gate's cell: twice that deep, 2 m wide)
+GATE = 0.45  # metres from a street's end to its gate's point (the gate's cell: twice that deep)
+ACROSS = 0.8  # metres from a gate's point to its cell's sides (the cell: twice that wide)
 END = 0.3  # metres: a robot stops this far before a cell's end (its body in the cell, clear of the next)
 BEYOND = 0.5  # metres: a robot comes to its place round a gate from this far beyond it, to stand facing the gate
-SLOT = 0.9  # metres at least between neighbouring places on an arc round a gate
+LANE_ARC = 210.0  # degrees the lane's arcs span at most (round beside the lane's walls; the crossing's: 180)
+SLOT = 0.55  # metres at least between neighbouring places round a gate (robots 0.4 m wide pass between them)
 
 
 def state_name(k: int, positions: int) -> str:
@@ -63,19 +65,6 @@ def holding(route: tuple[str | None, ...], cell: str) -> list[str]:
                 if state not in states:
                     states.append(state)
     return states
-
-
-def _fan(gate: tuple[float, float], facing: float, count: int) -> list[tuple[float, float, float]]:
-    """``count`` homes on an arc round ``gate``, away from ``facing`` (the direction, in degrees,
-    from the gate into its street), each facing the gate."""
-    spread = min(150.0, 32.0 * (count - 1))
-    homes = []
-    for k in range(count):
-        angle = facing + 180.0 + (spread * (k / (count - 1) - 0.5) if count > 1 else 0.0)
-        x = gate[0] + ARC * math.cos(math.radians(angle))
-        y = gate[1] + ARC * math.sin(math.radians(angle))
-        homes.append((round(x, 3), round(y, 3), round((angle + 180.0) % 360.0, 1)))
-    return homes
 
 
 def _box(x0: float, y0: float, x1: float, y1: float) -> list[list[float]]:
@@ -234,23 +223,35 @@ def street_model(name: str, kinds: dict[str, tuple[list[Leg], int]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _arc(gate: tuple[float, float], facing: float, count: int) -> list[tuple[float, float, float]]:
-    """``count`` places on an arc round ``gate`` away from ``facing`` (the direction, in degrees,
-    from the gate into its street), at least SLOT apart, each facing the gate: (x, y, heading)."""
-    spread = min(180.0, 32.0 * (count - 1))
-    gap = math.radians(spread / (count - 1)) if count > 1 else math.pi
-    radius = max(math.hypot(GATE, 1.0) + 0.3, SLOT / (2 * math.sin(gap / 2)))  # clear of the gate's cell
+def _spread(count: int, widest: float) -> tuple[float, float]:
+    """(degrees an arc of ``count`` places spans, radians between neighbours): 32 degrees
+    apart, over ``widest`` at most."""
+    spread = min(widest, 32.0 * (count - 1))
+    return spread, math.radians(spread / (count - 1)) if count > 1 else math.pi
+
+
+def _arc(gate: tuple[float, float], facing: float, count: int, widest: float) -> list[tuple[float, float, float]]:
+    """``count`` places round ``gate`` away from ``facing`` (the direction, in degrees, from the
+    gate into its street), each on its own ray from the gate, at least SLOT from its neighbours,
+    as near the gate as its body can be while clear of the gate's cell (GATE each way along the
+    street, ACROSS each way across) by 0.1 m, facing the gate: (x, y, heading)."""
+    spread, gap = _spread(count, widest)
+    least = SLOT / (2 * math.sin(gap / 2))
     places = []
     for k in range(count):
-        angle = facing + 180.0 + (spread * (k / (count - 1) - 0.5) if count > 1 else 0.0)
-        x = gate[0] + radius * math.cos(math.radians(angle))
-        y = gate[1] + radius * math.sin(math.radians(angle))
-        places.append((round(x, 3), round(y, 3), round((angle + 180.0) % 360.0, 1)))
+        off = spread * (k / (count - 1) - 0.5) if count > 1 else 0.0  # degrees from straight away
+        a, c = -math.cos(math.radians(off)), math.sin(math.radians(off))  # along the street, across
+        r = least
+        while math.hypot(max(0.0, abs(r * a) - GATE), max(0.0, abs(r * c) - ACROSS)) < 0.3:
+            r += 0.01
+        angle = math.radians(facing + 180.0 + off)
+        x, y = gate[0] + r * math.cos(angle), gate[1] + r * math.sin(angle)
+        places.append((round(x, 3), round(y, 3), round((math.degrees(angle) + 180.0) % 360.0, 1)))
     return places
 
 
 def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, float],
-             walls: list[Any], cells: dict[str, list[list[float]]]) -> tuple[str, str]:
+             walls: list[Any], cells: dict[str, list[list[float]]], widest: float) -> tuple[str, str]:
     """(world file text, model text): ``per_end`` robots homed round each gate of each street,
     in turn (the first street's first gate, its second gate, the next street's ...), each robot
     crossing its street, turning at its own place beyond the far gate and coming back. Round a
@@ -264,7 +265,7 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
         for side in (0, 1):
             gate = points[street.gates[side]]
             facing = math.degrees(math.atan2(street.along[1], street.along[0])) + (0.0 if side == 0 else 180.0)
-            arcs[(s, side)] = _arc(gate, facing, 2 * per_end)
+            arcs[(s, side)] = _arc(gate, facing, 2 * per_end, widest)
     # the robots in the coordinator's order (robosc.sim.fleet.instances): kind by kind, by name
     kinds = sorted((street.kinds[side], s, side) for s, street in enumerate(streets) for side in (0, 1))
     homes, legs = [], []
@@ -274,9 +275,9 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
             homes.append(arcs[(s, side)][2 * k])
             turn = arcs[(s, 1 - side)][2 * k + 1]
             points[f"t{robot}"] = (turn[0], turn[1])
-            for name, (x, y, heading) in ((f"t{robot}_out", turn), (f"h{robot}_out", homes[-1])):
-                points[name] = (round(x - BEYOND * math.cos(math.radians(heading)), 3),
-                                round(y - BEYOND * math.sin(math.radians(heading)), 3))
+            for name, (x, y, heading) in ((f"t{robot}", turn), (f"h{robot}", homes[-1])):
+                points[f"{name}_out"] = (round(x - BEYOND * math.cos(math.radians(heading)), 3),
+                                         round(y - BEYOND * math.sin(math.radians(heading)), 3))
             legs.append([list(leg.points) for leg in streets[s].route(side, f"t{robot}", robot)])
     model = {kind: (streets[s].route(side, "t"), per_end) for kind, s, side in kinds}
     turn_at = len(next(iter(model.values()))[0]) // 2
@@ -286,27 +287,27 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
 
 def lane(per_side: int) -> tuple[str, str]:
     """(world file text, model text) of the lane with ``per_side`` robots homed at each end."""
-    radius = _arc((0.0, 0.0), 0.0, 2 * per_side)[0]
-    reach = math.ceil(10 * math.hypot(radius[0], radius[1])) / 10 + 1.0  # from a gate's point to the world's edge
+    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_side, LANE_ARC))
+    reach = math.ceil(10 * reach) / 10 + 1.0  # from a gate's point to the world's edge
     x0 = reach + 1.0  # the corridor's west end
     y = reach
     size = (2 * x0 + 3 * CELL, 2 * reach)
     street = Street(("l1", "l2", "l3"), ("gw", "ge"), (x0, y), (1.0, 0.0), ("west", "east"))
     east = x0 + 3 * CELL
-    cells = {"gw": _box(x0 - 2 * GATE, y - 1.0, x0, y + 1.0), "ge": _box(east, y - 1.0, east + 2 * GATE, y + 1.0)}
+    cells = {"gw": _box(x0 - 2 * GATE, y - ACROSS, x0, y + ACROSS), "ge": _box(east, y - ACROSS, east + 2 * GATE, y + ACROSS)}
     for k, name in enumerate(street.cells):
         cells[name] = _box(x0 + CELL * k, y - WIDTH / 2, x0 + CELL * (k + 1), y + WIDTH / 2)
     half = WIDTH / 2
     walls = [[(0, 0), (size[0], 0), (size[0], size[1]), (0, size[1]), (0, 0)],
              [(x0, y - half), (east, y - half)], [(x0, y + half), (east, y + half)]]
-    return _streets("lane", [street], per_side, size, walls, cells)
+    return _streets("lane", [street], per_side, size, walls, cells, LANE_ARC)
 
 
 def crossing(per_end: int) -> tuple[str, str]:
     """(world file text, model text) of the crossing with ``per_end`` robots homed round each of
     its four gates."""
-    radius = _arc((0.0, 0.0), 0.0, 2 * per_end)[0]
-    reach = math.ceil(10 * math.hypot(radius[0], radius[1])) / 10 + 1.0
+    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_end, 180.0))
+    reach = math.ceil(10 * reach) / 10 + 1.0
     centre = reach + 1.0 + 1.5 * CELL
     half = CELL / 2
     size = (2 * centre, 2 * centre)
@@ -318,9 +319,10 @@ def crossing(per_end: int) -> tuple[str, str]:
         px, py = centre + dx * CELL, centre + dy * CELL
         cells[name] = _box(px - half, py - half, px + half, py + half)
         gx, gy = centre + dx * gate, centre + dy * gate
-        cells["g" + name] = _box(gx - (GATE if dx else 1.0), gy - (GATE if dy else 1.0), gx + (GATE if dx else 1.0), gy + (GATE if dy else 1.0))
+        along, across = (GATE, ACROSS) if dx else (ACROSS, GATE)
+        cells["g" + name] = _box(gx - along, gy - across, gx + along, gy + across)
     walls = [[(0, 0), (size[0], 0), (size[0], size[1]), (0, size[1]), (0, 0)]]
-    return _streets("crossing", [west_east, south_north], per_end, size, walls, cells)
+    return _streets("crossing", [west_east, south_north], per_end, size, walls, cells, 180.0)
 
 def load(text: str) -> Any:
     """A world from its file's text."""
