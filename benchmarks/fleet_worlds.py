@@ -26,6 +26,7 @@ next.
 
 from __future__ import annotations
 
+import functools
 import math
 import tempfile
 from dataclasses import dataclass
@@ -250,6 +251,27 @@ def _arc(gate: tuple[float, float], facing: float, count: int, widest: float) ->
     return places
 
 
+def _clear(count: int, widest: float) -> float:
+    """The widest arc, up to ``widest`` degrees in steps of 5, whose ``count`` places round a
+    gate are reached from the gate's point and left for the street's mouth along ways that keep
+    a robot's body 0.15 m clear of the ends of the lane's walls (0.35 m from its centre)."""
+    from robosc.sim.world import _to_segment
+
+    mouth = (GATE - END, 0.0)
+    while widest > 90.0:
+        places = _arc((0.0, 0.0), 0.0, count, widest)  # the street along +x from the gate
+        ends = [(GATE, WIDTH / 2), (GATE, -WIDTH / 2)]
+        ways = []
+        for x, y, _ in places:
+            r = math.hypot(x, y)
+            out = (x * (r + BEYOND) / r, y * (r + BEYOND) / r)
+            ways += [((x, y), mouth), ((0.0, 0.0), out)]
+        if all(_to_segment(ex, ey, a, b) >= 0.35 for ex, ey in ends for a, b in ways):
+            return widest
+        widest -= 5.0
+    return widest
+
+
 def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, float],
              walls: list[Any], cells: dict[str, list[list[float]]], widest: float) -> tuple[str, str]:
     """(world file text, model text): ``per_end`` robots homed round each gate of each street,
@@ -287,7 +309,8 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
 
 def lane(per_side: int) -> tuple[str, str]:
     """(world file text, model text) of the lane with ``per_side`` robots homed at each end."""
-    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_side, LANE_ARC))
+    widest = _clear(2 * per_side, LANE_ARC)
+    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_side, widest))
     reach = math.ceil(10 * reach) / 10 + 1.0  # from a gate's point to the world's edge
     x0 = reach + 1.0  # the corridor's west end
     y = reach
@@ -300,7 +323,7 @@ def lane(per_side: int) -> tuple[str, str]:
     half = WIDTH / 2
     walls = [[(0, 0), (size[0], 0), (size[0], size[1]), (0, size[1]), (0, 0)],
              [(x0, y - half), (east, y - half)], [(x0, y + half), (east, y + half)]]
-    return _streets("lane", [street], per_side, size, walls, cells, LANE_ARC)
+    return _streets("lane", [street], per_side, size, walls, cells, widest)
 
 
 def crossing(per_end: int) -> tuple[str, str]:
@@ -336,6 +359,7 @@ def load(text: str) -> Any:
         Path(f.name).unlink()
 
 
+@functools.lru_cache(maxsize=4)
 def synthesized(text: str) -> Any:
     from robosc.api import check_text, synthesize_model
 
