@@ -255,7 +255,7 @@ def _clear(count: int, widest: float) -> float:
     """The widest arc, up to ``widest`` degrees in steps of 5, whose ``count`` places round a
     gate are reached from the gate's point and left for the street's mouth along ways that keep
     a robot's body 0.15 m clear of the ends of the lane's walls (0.35 m from its centre)."""
-    from robosc.sim.world import _to_segment
+    from robosc.sim.world import to_segment
 
     mouth = (GATE - END, 0.0)
     while widest > 90.0:
@@ -266,7 +266,7 @@ def _clear(count: int, widest: float) -> float:
             r = math.hypot(x, y)
             out = (x * (r + BEYOND) / r, y * (r + BEYOND) / r)
             ways += [((x, y), mouth), ((0.0, 0.0), out)]
-        if all(_to_segment(ex, ey, a, b) >= 0.35 for ex, ey in ends for a, b in ways):
+        if all(to_segment(ex, ey, a, b) >= 0.35 for ex, ey in ends for a, b in ways):
             return widest
         widest -= 5.0
     return widest

@@ -42,7 +42,7 @@ from robosc.record import record
 from robosc.runtime.onboard.tasks import FAILED, Dispatcher
 from robosc.sim.report import FleetFigures, Report, report_of
 from robosc.sim.simulation import Simulation
-from robosc.sim.world import Fleet, Pose, World
+from robosc.sim.world import Fleet, Pose, World, to_segment
 
 REACHED = 0.06  # metres from a waypoint that count as there
 BLOCKED_GAP = 0.25  # metres between the robot's edge and what its LiDAR sees ahead that block it
@@ -107,7 +107,7 @@ class Driver:
                  leaving: bool = False) -> None:
         self.index, self.fleet, self.home = index, fleet, home
         self.leaving = leaving  # whether it says ``left`` (the model has that answer)
-        self.watch = ""  # the cell the leg under way ends in ("" for none) while ``left`` may still come
+        self.ending: str | None = None  # the cell the leg under way ends in ("": none) while ``left`` may come
         self.was_out = False  # whether its body has overlapped another cell in the leg under way
         self.task = fleet.task_of(index)
         self.speed = speed  # a share of the world's top speed this robot drives at
@@ -152,7 +152,7 @@ class Driver:
         self.path = [self.fleet.point(name, self.home) for name in names]
         self.doing = "driving"
         if self.leaving:
-            self.watch, self.was_out = "@" + self.fleet.cell(*self.path[-1]), False
+            self.ending, self.was_out = self.fleet.cell(*self.path[-1]), False
 
     def step(self, sim: Simulation, scan: list[float] | None, now: float, status: FleetStatus) -> None:
         """Drive toward the next point of the path; answer what happened."""
@@ -168,7 +168,7 @@ class Driver:
         if self.doing not in ("driving", "docking", "undocking") or not self.path:
             return
         pose = sim.bodies[self.index].pose
-        if self.watch and self.doing == "driving":
+        if self.ending is not None and self.doing == "driving":
             self._left(pose, sim.world.robot.radius)
         if self.doing == "driving" and scan is not None and self._blocked(sim, scan):
             if self.blocked_since is None:
@@ -198,12 +198,12 @@ class Driver:
     def _left(self, pose: Pose, radius: float) -> None:
         """Say ``left`` (once a leg) when the body, which overlapped a cell other than the one
         the leg ends in, overlaps none but that one."""
-        others = self.fleet.cells_under(pose.x, pose.y, radius) - {self.watch[1:]}
+        others = self.fleet.cells_under(pose.x, pose.y, radius) - {self.ending}
         if others:
             self.was_out = True
         elif self.was_out:
             self.answers.append("left")
-            self.watch = ""
+            self.ending = None
 
     def _finished(self, now: float, status: FleetStatus) -> None:
         if self.doing == "docking":
@@ -350,12 +350,8 @@ class FleetWorld:
         assert door is not None and self.door is not None
         if self.door.state == "open":
             return
-        (ax, ay), (bx, by) = door.a, door.b
         for i, body in enumerate(self.sim.bodies):
-            p = body.pose
-            dx, dy = bx - ax, by - ay
-            t = max(0.0, min(1.0, ((p.x - ax) * dx + (p.y - ay) * dy) / (dx * dx + dy * dy)))
-            if math.hypot(p.x - (ax + t * dx), p.y - (ay + t * dy)) < self.sim.world.robot.radius:
+            if to_segment(body.pose.x, body.pose.y, door.a, door.b) < self.sim.world.robot.radius:
                 status = self.sim.status[i]
                 if status.collided_at is None:
                     status.collided_at, status.touched = self.sim.time, f"the door ({self.door.state})"

@@ -166,16 +166,15 @@ class Fleet:
 
     def cells_under(self, x: float, y: float, radius: float) -> frozenset[str]:
         """The cells a robot's body (a disc of ``radius`` round (x, y)) overlaps."""
-        under = set()
+        centre = self.cell(x, y)
+        under = {centre} if centre else set()
         for name, polygon in self.cells:
-            if self.cell(x, y) == name or any(
-                _to_segment(x, y, a, b) < radius for a, b in zip(polygon, polygon[1:] + polygon[:1], strict=True)
-            ):
+            if any(to_segment(x, y, a, b) < radius for a, b in zip(polygon, polygon[1:] + polygon[:1], strict=True)):
                 under.add(name)
         return frozenset(under)
 
 
-def _to_segment(x: float, y: float, a: tuple[float, float], b: tuple[float, float]) -> float:
+def to_segment(x: float, y: float, a: tuple[float, float], b: tuple[float, float]) -> float:
     """The distance from (x, y) to the segment from ``a`` to ``b``."""
     dx, dy = b[0] - a[0], b[1] - a[1]
     length = dx * dx + dy * dy
