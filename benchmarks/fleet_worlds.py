@@ -8,9 +8,9 @@ model written from each robot's route.
 
 A task: through the near gate and the street, cell by cell, to the far gate's point, on to the
 robot's own turning place beyond it (``at_6``), back the same way and home. Round each gate,
-the homes of its robots and the turning places of the robots from the far end take turns on one
-arc, at least SLOT apart, clear of the gate's cell; a robot's way from the gate to its place is
-a ray of that arc, crossing no other's.
+the homes of its robots and the turning places of the robots from the far end take turns, each
+on a ray of its own from the gate, at least SLOT apart and clear of the gate's cell; a robot's
+way between the gate and its place is along that ray, crossing no other's.
 
 Each leg ends at rest just inside the far end of the cell it drives into (END before the next
 cell), so that a robot waits for the next cell with its body clear of it. A robot starts a leg
@@ -19,9 +19,9 @@ only into a cell no other robot holds, and holds the cells it starts in until it
 follows one cell behind. The walls are the lane's sides; the crossing's robots keep to their
 streets by their legs.
 
-``state_name``, ``move_name`` and ``holding`` are the states of the two- and four-robot
-scenarios' routes (benchmarks/scenarios.py), where a robot holds a cell until it arrives in the
-next.
+``move_name`` and ``holding`` are the states of the two- and four-robot scenarios' routes
+(benchmarks/scenarios.py), where a robot holds a cell until it arrives in the next;
+``state_name`` (a robot at rest at a position) serves both.
 """
 
 from __future__ import annotations
@@ -35,7 +35,6 @@ from typing import Any
 
 CELL = 2.0  # metres: each cell's length
 WIDTH = 1.2  # metres: a lane's width
-ARC = 2.6  # metres from a gate's point to the homes round it
 GATE = 0.45  # metres from a street's end to its gate's point (the gate's cell: twice that deep)
 ACROSS = 0.8  # metres from a gate's point to its cell's sides (the cell: twice that wide)
 END = 0.3  # metres: a robot stops this far before a cell's end (its body in the cell, clear of the next)
@@ -126,7 +125,7 @@ class Street:
         return (round(self.start[0] + distance * self.along[0], 3), round(self.start[1] + distance * self.along[1], 3))
 
     def points(self) -> dict[str, tuple[float, float]]:
-        """Its waypoints: each gate's point (1 m beyond the street's end) and its mouth (just in
+        """Its waypoints: each gate's point (GATE beyond the street's end) and its mouth (just in
         front of the first cell), and each cell's two ends (``l2_ge``: the end of l2 toward ge)."""
         length = CELL * len(self.cells)
         a, b = self.gates
@@ -160,8 +159,8 @@ class Street:
 def _states(k: int, leg: Leg, positions: int) -> dict[str, list[str]]:
     """The states of a robot during leg ``k`` (1 ..) and at its end: ``to`` (the cells held: the
     start's and the end's), ``past`` (after ``left``: the end's alone) and ``at``."""
-    at = "home" if k == positions else f"at_{k}"
-    return {"to": [f"to_{k}", f"stopped_{k}"], "past": [f"past_{k}", f"stopped_past_{k}"] if leg.leaves else [], "at": [at]}
+    past = [f"past_{k}", f"stopped_past_{k}"] if leg.leaves else []
+    return {"to": [f"to_{k}", f"stopped_{k}"], "past": past, "at": [state_name(k, positions)]}
 
 
 def street_model(name: str, kinds: dict[str, tuple[list[Leg], int]]) -> str:
@@ -181,10 +180,9 @@ def street_model(name: str, kinds: dict[str, tuple[list[Leg], int]]) -> str:
                   "        outgoing message left with type: none",
                   "        behaviour {"]
         for k, leg in enumerate(legs, 1):
-            before = "home" if k == 1 else f"at_{k - 1}"
             states = _states(k, leg, positions)
             initial = "initial marked " if k == 1 else ""
-            lines.append(f"            {initial}state {before} {{ on request to go goto to_{k} }}")
+            lines.append(f"            {initial}state {state_name(k - 1, positions)} {{ on request to go goto to_{k} }}")
             lines.append(f"            state to_{k} {{")
             lines.append(f"                on response from arrived goto {states['at'][0]}")
             lines.append(f"                on response from stopped goto stopped_{k}")
@@ -212,13 +210,12 @@ def street_model(name: str, kinds: dict[str, tuple[list[Leg], int]]) -> str:
         for k, leg in enumerate(legs, 1):
             if leg.end is None or leg.end in leg.start:
                 continue
-            before = "home" if k == 1 else f"at_{k - 1}"
             free = []
             for other in kinds:
                 held = " or ".join(f"q.{state}" for state in holders.get((other, leg.end), []))
                 if held:
                     free.append(f"!any(q in {other}: q != r and ({held}))" if other == kind else f"!any(q in {other}: {held})")
-            lines.append(f"        requirement r.go needs r.{before} => (" + " and ".join(free) + ")")
+            lines.append(f"        requirement r.go needs r.{state_name(k - 1, len(legs))} => (" + " and ".join(free) + ")")
         lines.append("    }")
     lines.append("}")
     return "\n".join(lines) + "\n"
@@ -258,9 +255,9 @@ def _clear(count: int, widest: float) -> float:
     from robosc.sim.world import to_segment
 
     mouth = (GATE - END, 0.0)
+    ends = [(GATE, WIDTH / 2), (GATE, -WIDTH / 2)]
     while widest > 90.0:
         places = _arc((0.0, 0.0), 0.0, count, widest)  # the street along +x from the gate
-        ends = [(GATE, WIDTH / 2), (GATE, -WIDTH / 2)]
         ways = []
         for x, y, _ in places:
             r = math.hypot(x, y)
@@ -277,8 +274,8 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
     """(world file text, model text): ``per_end`` robots homed round each gate of each street,
     in turn (the first street's first gate, its second gate, the next street's ...), each robot
     crossing its street, turning at its own place beyond the far gate and coming back. Round a
-    gate its homes and the turning places of the robots from the other end take turns on one
-    arc."""
+    gate its homes and the turning places of the robots from the other end take turns
+    (:func:`_arc`)."""
     points: dict[str, tuple[float, float]] = {}
     for street in streets:
         points.update(street.points())
@@ -307,11 +304,17 @@ def _streets(name: str, streets: list[Street], per_end: int, size: tuple[float, 
     return world, street_model(name, model)
 
 
+def _reach(count: int, widest: float) -> float:
+    """Metres from a gate's point to the world's edge, to hold ``count`` places round it and
+    the ways beyond them."""
+    farthest = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, count, widest))
+    return math.ceil(10 * farthest) / 10 + 1.0
+
+
 def lane(per_side: int) -> tuple[str, str]:
     """(world file text, model text) of the lane with ``per_side`` robots homed at each end."""
     widest = _clear(2 * per_side, LANE_ARC)
-    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_side, widest))
-    reach = math.ceil(10 * reach) / 10 + 1.0  # from a gate's point to the world's edge
+    reach = _reach(2 * per_side, widest)
     x0 = reach + 1.0  # the corridor's west end
     y = reach
     size = (2 * x0 + 3 * CELL, 2 * reach)
@@ -329,8 +332,7 @@ def lane(per_side: int) -> tuple[str, str]:
 def crossing(per_end: int) -> tuple[str, str]:
     """(world file text, model text) of the crossing with ``per_end`` robots homed round each of
     its four gates."""
-    reach = max(math.hypot(x, y) for x, y, _ in _arc((0.0, 0.0), 0.0, 2 * per_end, 180.0))
-    reach = math.ceil(10 * reach) / 10 + 1.0
+    reach = _reach(2 * per_end, 180.0)
     centre = reach + 1.0 + 1.5 * CELL
     half = CELL / 2
     size = (2 * centre, 2 * centre)

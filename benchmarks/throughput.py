@@ -275,11 +275,11 @@ def bound(world_name: str, tasks: int, alone: list[Lone], stay: float) -> tuple[
         ways = [c for a in used for c in a.crossings[street]]
         total = tasks * len(ways)
         phases = 2 * tasks + 1
-        cells = street[1:-1]
-        ramps = min(min(a.first[c] for c in cells if c in a.first) for a in used) + \
-            min(min(a.after[c] for c in cells if c in a.after) for a in used)
+        inner = street[1:-1]  # the street's own cells, between its gates
+        ramps = min(min(a.first[c] for c in inner if c in a.first) for a in used) + \
+            min(min(a.after[c] for c in inner if c in a.after) for a in used)
         switch = min(c.gate_out for c in ways) + min(c.gate_in for c in ways)
-        limits[f"{'-'.join(cells)} ({phases} turns of one direction)"] = (
+        limits[f"{'-'.join(inner)} ({phases} turns of one direction)"] = (
             ramps + phases * min(c.through for c in ways) + (total - phases) * min(c.by for c in ways)
             + (phases - 1) * switch)
     what = max(limits, key=lambda k: limits[k])

@@ -282,7 +282,8 @@ class DoorSim:
 class FleetWorld:
     """The world's side of a fleet: the simulation, a driver per robot and the door. Commands
     come in by the coordinator's names (``bot1.go``, ``open_door``); each ``step()`` returns the
-    answers the robots and the door gave (``bot1.arrived``, ``door_opened``)."""
+    answers the robots and the door gave (``bot1.arrived``, ``door_opened``). With ``leaving``
+    (the model has the answer ``left``) the drivers say ``left`` too."""
 
     def __init__(self, world: World, names: list[str], jitter: Jitter | None = None, leaving: bool = False) -> None:
         if world.fleet is None:

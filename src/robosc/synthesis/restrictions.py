@@ -24,7 +24,6 @@ def restriction(result: SynthesisResult, event: Event | str) -> Restriction | No
     return why(result.fixpoint, found)
 
 
-
 def never_allows(result: SynthesisResult, event: Event) -> bool:
     """Whether the supervisor allows ``event`` (controllable) in no state the controlled system
     reaches: the one part of :func:`restriction` (its ``never``) that needs no explanation, so
