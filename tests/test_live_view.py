@@ -180,3 +180,25 @@ def test_live_view_keeps_up_with_100_events_per_second(browser: Any, tmp_path: P
         assert seen & {"executing", "ready", "error"}, seen
     finally:
         children.stop([process])
+
+
+def test_live_view_says_a_component_is_unconfirmed_and_highlights_none_of_its_locations(
+    browser: Any, tmp_path: Path
+) -> None:
+    # a node sends null for what it has not confirmed (after a restart, an answer that may be a
+    # copy, a command whose delivery is uncertain): the page says so, and shows no location
+    from robosc.api import synthesize_file
+    from robosc.debug.live import render_page
+
+    page = tmp_path / "live.html"
+    page.write_text(render_page(synthesize_file(ROOT / "examples/maze_solver.rscd")))
+    browser.get(page.as_uri())  # no server: the page is fed by hand
+    feed = "apply({state: {automata: arguments[0], variables: arguments[1]}}, false);"
+    browser.execute_script(feed, {"Platform": "turning"}, {"Distance.front": "wall_front"})
+    assert current(browser, "Platform") == ["turning"] and text(browser, "where:Platform") == "turning"
+    browser.execute_script(feed, {"Platform": None}, {"Distance.front": None})
+    assert current(browser, "Platform") == []
+    assert text(browser, "where:Platform") == "unconfirmed"
+    assert text(browser, "var:Distance.front") == "unconfirmed"
+    browser.execute_script(feed, {"Platform": "ready"}, {"Distance.front": "no_wall_front"})
+    assert current(browser, "Platform") == ["ready"] and text(browser, "where:Platform") == "ready"
