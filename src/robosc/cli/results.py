@@ -13,7 +13,7 @@ import click
 
 from robosc.api import SynthesisResult, plan_supervisor, synthesize_model
 from robosc.cli.common import EXIT_MODEL_ERRORS, exit_with, load_robot, say, synthesis_running, width
-from robosc.cli.table import Cell, boxed
+from robosc.cli.table import Cell, boxed, table_width
 from robosc.language.diagnostics import Diagnostic, render_text, to_json
 from robosc.language.render import render
 from robosc.synthesis.compare import Comparison
@@ -97,7 +97,7 @@ def print_warnings(warnings: list[Diagnostic]) -> None:
 
 def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Comparison] | None = None) -> None:
     # fitted to the terminal (or COLUMNS); piped to a file or another program without
-    # COLUMNS, each condition and sentence stays on one line
+    # COLUMNS, each sentence stays on one line and the table is kept to PIPED_WIDTH
     columns = width()
 
     def show(text: str, indent: str = "    ") -> None:  # fitted prose
@@ -130,7 +130,7 @@ def print_result(result: SynthesisResult, cross_check: tuple[SynthesisResult, Co
         added = Cell(render(guard.added)) if guard.added is not None else "-"
         rows.append((guard.event.name, required, added))
     headers = ("controllable event", "your condition", "added by synthesis")
-    click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=columns))
+    click.echo(boxed(headers, rows, title=f"supervisor for {name}", no_wrap=(0,), width=table_width()))
     restrictions = [r for r in (why_restricted(result, g.event) for g in result.added_guards) if r is not None]
     if result.method == "symmetric":  # a fleet's robots are restricted alike: each explanation once
         once: dict[str, Restriction] = {}

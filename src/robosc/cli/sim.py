@@ -231,11 +231,11 @@ def _title(report: Report, world: Any, ros: str) -> str:
 
 def report_table(report: Report, title: str) -> str:
     """A run's table (robosc.sim.report.columns), fitted to the terminal."""
-    from robosc.cli.table import boxed, terminal_width
+    from robosc.cli.table import boxed, table_width
     from robosc.sim.report import columns
 
     headers, rows = columns(report)
-    return boxed(headers, rows, title=title, right=range(1, len(headers)), width=terminal_width())
+    return boxed(headers, rows, title=title, right=range(1, len(headers)), width=table_width())
 
 
 def _record(report: Report, world: Any, folder: Path, ros: str) -> None:

@@ -43,6 +43,17 @@ def terminal_width(stream: Any = None) -> int | None:
     return columns_now if columns_now >= 2 * _MIN_WIDTH else 80
 
 
+PIPED_WIDTH = 160  # a table's width piped without COLUMNS: a wide terminal's (--json is for programs)
+
+
+def table_width(stream: Any = None) -> int:
+    """The width to fit a table to: ``terminal_width``'s, or ``PIPED_WIDTH`` when the output is
+    piped. A table is for people: piped to a file it stays as readable (a condition that
+    grows with a fleet wraps within its cell, not into a line of tens of thousands of
+    characters); prose and warnings stay one line each."""
+    return terminal_width(stream) or PIPED_WIDTH
+
+
 def _wrap(text: str, width: int) -> list[str]:
     return textwrap.wrap(text, width, break_on_hyphens=False) or [""]
 
