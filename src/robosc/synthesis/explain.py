@@ -342,7 +342,16 @@ def cut_way(fp: Any, state: NetworkState) -> tuple[list[tuple[Event, NetworkStat
     can be reached from at all, or where an uncontrollable event breaks a requirement. The
     events up to that state (each with the state it reaches), the uncontrollable event, the
     state it leads to, and whether that state is one no marked state can be reached from (else
-    an uncontrollable event breaks a requirement there). None when the cut is further away."""
+    an uncontrollable event breaks a requirement there). None when the cut is further away.
+    Kept in ``fp.memo``: a counted fleet's robots alike ask about the same counted state."""
+    key = ("cut way", state)
+    if key not in fp.memo:
+        fp.memo[key] = _cut_way(fp, state)
+    found: tuple[list[tuple[Event, NetworkState]], Event, NetworkState, bool] | None = fp.memo[key]
+    return found
+
+
+def _cut_way(fp: Any, state: NetworkState) -> tuple[list[tuple[Event, NetworkState]], Event, NetworkState, bool] | None:
     enc = fp.enc
     restricted, dead = _required_moves(fp, fp.state(state))
     layers = layers_from(enc, fp.state(state), (r for _, r in restricted), until=fp.marked)
