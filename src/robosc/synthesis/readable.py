@@ -135,25 +135,26 @@ def _summed(enc: Encoding, u: BDD, care: BDD, support: set[str], sums: dict[Any,
     return None
 
 
-def _nobody(enc: Encoding, u: BDD, care: BDD) -> m.Expr | None:
-    """``u`` on ``care`` as "no robot of one group in any of some places", written as one sum
-    (``c_out2 + c_shelf + ... = 0``): the places ``u`` keeps empty (of those some state of
-    ``care`` has a robot in), where keeping them empty is all ``u`` asks; None where it is not
-    that. However many places, it is one condition, where taken apart counter by counter it is a
-    case for each way of sharing the robots out among the other places."""
+def _nobody(enc: Encoding, u: BDD, care: BDD) -> tuple[m.Expr, BDD] | None:
+    """What of ``u`` on ``care`` is "no robot in any of some places", one sum per group
+    (``c_out2 + c_shelf + ... = 0``: the places of each group ``u`` keeps empty, of those some
+    state of ``care`` has a robot in), and where they are all empty (what is left of ``u`` is
+    told there); None where ``u`` keeps no place empty. However many places, it is one condition
+    a group, where taken apart counter by counter it is a case for each way of sharing the
+    robots out among the other places."""
+    empty = enc.true
+    sums: list[m.Expr] = []
     for counters, _size in enc.network.totals:
-        empty = enc.true
         kept: list[m.Variable] = []
         for counter in counters:
             zero = enc.holds(counter, 0)
             if (care & ~zero) != enc.false and (u & care & ~zero) == enc.false:
                 kept.append(counter)
                 empty &= zero
-        if not kept or (care & empty & ~u) != enc.false:
-            continue
-        total = _sum([enc.field(counter) for counter in kept])
-        return m.Binary("=", total, m.Literal(0, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN)
-    return None
+        if kept:
+            total = _sum([enc.field(counter) for counter in kept])
+            sums.append(m.Binary("=", total, m.Literal(0, m.INTEGER, NO_SPAN), m.BOOLEAN, NO_SPAN))
+    return (all_of(sums), empty) if sums else None
 
 
 def _sum(fields: list[Field]) -> m.Expr:
@@ -171,9 +172,13 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, 
         return TRUE
     u = cudd.restrict(u, care)
     support = enc.bdd.support(u)
-    summed = _nobody(enc, u, care) if enc.network.totals else None
-    if summed is None and enc.network.totals:
-        summed = _summed(enc, u, care, support, sums)
+    nobody = _nobody(enc, u, care) if enc.network.totals else None
+    if nobody is not None:
+        kept_empty, empty = nobody
+        if (care & empty & ~u) == enc.false:  # that is all u asks
+            return kept_empty
+        return all_of([kept_empty, _expr(enc, u, care & empty, order, sums)])
+    summed = _summed(enc, u, care, support, sums) if enc.network.totals else None
     if summed is not None:
         return summed
     position = next(i for i, f in enumerate(order) if support & set(f.bits))
@@ -188,7 +193,13 @@ def _expr(enc: Encoding, u: BDD, care: BDD, order: list[Field], sums: dict[Any, 
             free.append(value)
             continue
         remainder = cudd.restrict(enc.bdd.let(assignment, u), care_here)
-        key = int(remainder)
+        # a remainder already found that reads as this one where this value applies serves it
+        # too: "count(q in east: q.home) < 3 and X or count(q in east: q.home) = 3 and Y" is "X"
+        # where X holds when all are home exactly as Y does
+        mine = remainder & care_here
+        key = next((k for k, (r, _) in remainders.items() if (r & care_here) == mine), int(remainder))
+        if key in remainders:
+            remainder = remainders[key][0]
         groups.setdefault(key, []).append(value)
         previous = remainders.get(key)
         remainders[key] = (remainder, care_here if previous is None else previous[1] | care_here)
